@@ -1,0 +1,114 @@
+# vres - variable-resolution SPH toolkit.
+#   make            build libvres and every tool into bin/ (CUDA parts too where nvcc exists)
+#   make check      build, then run the whole test suite (unit + tool behaviour + ASan readers)
+#   make demo       generate the shipped cases and export them to VTK under demo/
+#   make install PREFIX=/usr/local
+# Sources are found by wildcard: lib/*.c|*.cc|*.cu -> libvres, tools/vres-*.c -> bin/vres-*,
+# tests/lib/test_*.c -> unit tests (Check).
+
+VERSION   := 0.1.0
+PREFIX    ?= /usr/local
+CC        := gcc
+CXX       := g++
+GIT_REV   := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)
+
+PKGS      := hdf5-serial libxml-2.0
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lhdf5_hl
+HDF5_LIBDIR := $(shell pkg-config --variable=libdir hdf5-serial 2>/dev/null)
+VTK_INC   ?= /usr/include/vtk-9.1
+VTK_LIBS  ?= -lvtkIOXML-9.1 -lvtkIOCore-9.1 -lvtkCommonExecutionModel-9.1 -lvtkCommonDataModel-9.1 -lvtkCommonCore-9.1
+CHECK_LIBS := $(shell pkg-config --libs check 2>/dev/null)
+
+OPT       ?= -O2 -g
+WARN      := -Wall -Wextra
+CFLAGS    := -std=c11 $(WARN) $(OPT) -fopenmp -D_POSIX_C_SOURCE=200809L -Ilib -Ikernels $(PKG_CFLAGS)
+CXXFLAGS  := -std=c++17 $(WARN) $(OPT) -Ilib -isystem $(VTK_INC)
+LDLIBS    := $(PKG_LIBS) $(VTK_LIBS) -fopenmp -lm -lstdc++ -Wl,-rpath,$(HDF5_LIBDIR)
+
+# CUDA: built wherever nvcc is found; CUDA_ARCH kept short (one arch + its PTX for newer GPUs).
+NVCC      ?= $(shell command -v nvcc 2>/dev/null || (test -x /usr/local/cuda/bin/nvcc && echo /usr/local/cuda/bin/nvcc))
+CUDA_ARCH ?= -gencode arch=compute_75,code=[sm_75,compute_75]
+ifneq ($(NVCC),)
+  CUDA_HOME := $(patsubst %/bin/nvcc,%,$(NVCC))
+  CFLAGS    += -DVRES_HAVE_CUDA
+  NVFLAGS   := -O2 -std=c++17 $(CUDA_ARCH) -Ilib -Ikernels -DVRES_HAVE_CUDA
+  LDLIBS    += -L$(CUDA_HOME)/lib64 -lcudart -Wl,-rpath,$(CUDA_HOME)/lib64
+  CU_SRC    := $(wildcard lib/*.cu)
+else
+  CU_SRC    :=
+endif
+
+LIB_C     := $(wildcard lib/*.c)
+LIB_CC    := $(wildcard lib/*.cc)
+TOOL_SRC  := $(wildcard tools/vres-*.c)
+TOOLS     := $(patsubst tools/%.c,bin/%,$(TOOL_SRC))
+TEST_SRC  := $(wildcard tests/lib/test_*.c)
+TESTS     := $(patsubst tests/lib/%.c,build/tests/%,$(TEST_SRC))
+
+B         := build
+LIB_OBJ   := $(patsubst lib/%.c,$(B)/obj/%.o,$(LIB_C)) $(patsubst lib/%.cc,$(B)/obj/%.o,$(LIB_CC)) \
+             $(patsubst lib/%.cu,$(B)/obj/%.cu.o,$(CU_SRC))
+LIBVRES   := $(B)/libvres.a
+
+# AddressSanitizer build of the tools, used by the tests on bad input (no CUDA objects).
+ASAN_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer
+ASAN_OBJ  := $(patsubst lib/%.c,$(B)/asan/%.o,$(LIB_C)) $(patsubst lib/%.cc,$(B)/asan/%.o,$(LIB_CC))
+ASAN_TOOLS := $(patsubst tools/%.c,$(B)/asan/bin/%,$(TOOL_SRC))
+
+all: $(TOOLS)
+ifeq ($(NVCC),)
+	@echo "note: nvcc not found: CUDA backend not built (install the CUDA toolkit to build it)"
+endif
+
+$(B)/obj/version.o $(B)/asan/version.o: CFLAGS += -DVRES_VERSION='"$(VERSION)"' -DVRES_GIT='"$(GIT_REV)"' \
+  -DVRES_CFLAGS='"$(OPT) $(WARN)"'
+
+$(B)/obj/%.o: lib/%.c $(wildcard lib/*.h kernels/*.h) | $(B)/obj
+	$(CC) $(CFLAGS) -c $< -o $@
+$(B)/obj/%.o: lib/%.cc $(wildcard lib/*.h) | $(B)/obj
+	$(CXX) $(CXXFLAGS) -c $< -o $@
+$(B)/obj/%.cu.o: lib/%.cu $(wildcard lib/*.h kernels/*.h) | $(B)/obj
+	$(NVCC) $(NVFLAGS) -c $< -o $@
+$(LIBVRES): $(LIB_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+bin/vres-%: tools/vres-%.c $(LIBVRES) $(wildcard lib/*.h) | bin
+	$(CC) $(CFLAGS) $< -o $@ $(LIBVRES) $(LDLIBS)
+
+$(B)/asan/%.o: lib/%.c $(wildcard lib/*.h kernels/*.h) | $(B)/asan/bin
+	$(CC) $(filter-out -DVRES_HAVE_CUDA,$(CFLAGS)) -O1 $(ASAN_FLAGS) -c $< -o $@
+$(B)/asan/%.o: lib/%.cc $(wildcard lib/*.h) | $(B)/asan/bin
+	$(CXX) $(CXXFLAGS) -O1 $(ASAN_FLAGS) -c $< -o $@
+$(B)/asan/bin/vres-%: tools/vres-%.c $(ASAN_OBJ) | $(B)/asan/bin
+	$(CC) $(filter-out -DVRES_HAVE_CUDA,$(CFLAGS)) -O1 $(ASAN_FLAGS) $< -o $@ $(ASAN_OBJ) \
+	  $(filter-out -lcudart,$(LDLIBS))
+
+$(B)/tests/test_%: tests/lib/test_%.c $(LIBVRES) | $(B)/tests
+	$(CC) $(CFLAGS) $< -o $@ $(LIBVRES) $(CHECK_LIBS) $(LDLIBS)
+
+$(B)/obj $(B)/asan/bin $(B)/tests bin:
+	mkdir -p $@
+
+asan: $(ASAN_TOOLS)
+
+# The whole test suite: unit tests, tool behaviour tests, ASan runs on bad input.
+check: all asan $(TESTS)
+	bash tests/run
+
+demo: all
+	$(MAKE) -f pipelines/demo.mk
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 \
+	  $(DESTDIR)$(PREFIX)/share/man/man5 $(DESTDIR)$(PREFIX)/share/man/man7
+	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
+	install -m 644 $(wildcard man/man1/*.1) $(DESTDIR)$(PREFIX)/share/man/man1
+	install -m 644 $(wildcard man/man5/*.5) $(DESTDIR)$(PREFIX)/share/man/man5
+	install -m 644 $(wildcard man/man7/*.7) $(DESTDIR)$(PREFIX)/share/man/man7
+
+clean:
+	rm -rf $(B) bin demo
+
+.PHONY: all asan check demo install clean
+.DELETE_ON_ERROR:

@@ -1,0 +1,45 @@
+/* device.h - what lets per-particle physics be written once for the CPU and CUDA.
+ *
+ * VRES_HD marks a function callable on the host and the device: __host__ __device__ under
+ * nvcc, nothing under a C compiler. VRES_PARTICLE_LOOP(name, fn, (params), (args)) turns a
+ * per-particle function fn(size_t i, params...) into
+ *   - with a C compiler: void name_cpu(size_t n, params...), an OpenMP loop over i < n;
+ *   - with nvcc: a __global__ wrapper and void name_cuda(size_t n, params...) launching it
+ *     (pointers must then be device pointers).
+ * So the CPU tests run exactly the function the GPU runs; only memory transfers, sorting
+ * and compaction are device-specific. */
+#ifndef VRES_KERNELS_DEVICE_H
+#define VRES_KERNELS_DEVICE_H
+
+#include <stddef.h>
+
+#ifdef __CUDACC__
+#define VRES_HD __host__ __device__
+#else
+#define VRES_HD
+#endif
+
+/* Strip the parentheses of a parameter or argument list. */
+#define VRES_UNPAREN(...) __VA_ARGS__
+
+#ifdef __CUDACC__
+#define VRES_PARTICLE_LOOP(name, fn, params, args)                                       \
+    __global__ static void name##_kernel(size_t n, VRES_UNPAREN params)                  \
+    {                                                                                    \
+        size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;                        \
+        if (i < n) fn(i, VRES_UNPAREN args);                                             \
+    }                                                                                    \
+    static inline void name##_cuda(size_t n, VRES_UNPAREN params)                        \
+    {                                                                                    \
+        if (n) name##_kernel<<<(unsigned)((n + 255) / 256), 256>>>(n, VRES_UNPAREN args); \
+    }
+#else
+#define VRES_PARTICLE_LOOP(name, fn, params, args)                                       \
+    static inline void name##_cpu(size_t n, VRES_UNPAREN params)                         \
+    {                                                                                    \
+        _Pragma("omp parallel for schedule(static)")                                     \
+        for (size_t i = 0; i < n; i++) fn(i, VRES_UNPAREN args);                         \
+    }
+#endif
+
+#endif

@@ -1,0 +1,136 @@
+/* fileio.c - atomic output files and whole-file input (see fileio.h). */
+#define _GNU_SOURCE
+#include "fileio.h"
+#include "log.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+int vres_out_begin(vres_outfile *o, const char *path)
+{
+    o->path = vres_xstrdup(path);
+    const char *slash = strrchr(path, '/');
+    char *dir = slash ? vres_xasprintf("%.*s", (int)(slash - path) ? (int)(slash - path) : 1, path)
+                      : vres_xstrdup(".");
+    const char *base = slash ? slash + 1 : path;
+    struct stat st;
+    if (!*base) {
+        vres_error("%s: output names a directory, not a file", path);
+        free(dir);
+        free(o->path);
+        o->path = NULL;
+        return -1;
+    }
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        vres_error("%s: cannot write: directory '%s' does not exist", path, dir);
+        free(dir);
+        free(o->path);
+        o->path = NULL;
+        return -1;
+    }
+    if (access(dir, W_OK) != 0) {
+        vres_error("%s: cannot write: directory '%s' is not writable", path, dir);
+        free(dir);
+        free(o->path);
+        o->path = NULL;
+        return -1;
+    }
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        vres_error("%s: cannot write: it is a directory", path);
+        free(dir);
+        free(o->path);
+        o->path = NULL;
+        return -1;
+    }
+    o->tmp = vres_xasprintf("%s/.%s.tmp.%ld", dir, base, (long)getpid());
+    free(dir);
+    return 0;
+}
+
+int vres_out_commit(vres_outfile *o)
+{
+    if (rename(o->tmp, o->path) != 0) {
+        vres_error("%s: cannot rename from %s: %s", o->path, o->tmp, strerror(errno));
+        vres_out_abort(o);
+        return -1;
+    }
+    free(o->tmp);
+    free(o->path);
+    o->tmp = o->path = NULL;
+    return 0;
+}
+
+void vres_out_abort(vres_outfile *o)
+{
+    if (o->tmp) unlink(o->tmp);
+    free(o->tmp);
+    free(o->path);
+    o->tmp = o->path = NULL;
+}
+
+int vres_read_all(const char *path, unsigned char **buf, size_t *len)
+{
+    int is_stdin = strcmp(path, "-") == 0;
+    FILE *f = is_stdin ? stdin : fopen(path, "rb");
+    const char *name = is_stdin ? "(stdin)" : path;
+    if (!f) {
+        vres_error("%s: cannot open: %s", name, strerror(errno));
+        return -1;
+    }
+    size_t cap = 1 << 16, n = 0;
+    unsigned char *b = vres_xmalloc(cap + 1);
+    for (;;) {
+        size_t got = fread(b + n, 1, cap - n, f);
+        n += got;
+        if (n < cap) break;
+        cap *= 2;
+        b = vres_xrealloc(b, cap + 1);
+    }
+    int bad = ferror(f);
+    if (!is_stdin) fclose(f);
+    if (bad) {
+        vres_error("%s: read error", name);
+        free(b);
+        return -1;
+    }
+    b[n] = 0;
+    *buf = b;
+    *len = n;
+    return 0;
+}
+
+int vres_write_stdout(const void *buf, size_t len)
+{
+    if (fwrite(buf, 1, len, stdout) != len || fflush(stdout) != 0) {
+        vres_error("(stdout): write error: %s", strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+int vres_mkdirs(const char *path)
+{
+    char *p = vres_xstrdup(path);
+    for (char *s = p + 1; ; s++) {
+        if (*s == '/' || *s == 0) {
+            char c = *s;
+            *s = 0;
+            if (mkdir(p, 0777) != 0 && errno != EEXIST) {
+                vres_error("%s: cannot create directory: %s", p, strerror(errno));
+                free(p);
+                return -1;
+            }
+            *s = c;
+            if (!c) break;
+        }
+    }
+    struct stat st;
+    int ok = stat(path, &st) == 0 && S_ISDIR(st.st_mode);
+    if (!ok) vres_error("%s: not a directory", path);
+    free(p);
+    return ok ? 0 : -1;
+}

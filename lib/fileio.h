@@ -1,0 +1,31 @@
+/* fileio.h - atomic output files and whole-file input ("-" means stdin/stdout).
+ * Output is written under a temporary name in the target directory and renamed on
+ * success, so a failed tool never leaves a half-written file under the real name. */
+#ifndef VRES_FILEIO_H
+#define VRES_FILEIO_H
+
+#include <stddef.h>
+
+/* An output file being written atomically. */
+typedef struct vres_outfile {
+    char *path; /* final name */
+    char *tmp;  /* temporary name in the same directory ("DIR/.NAME.tmp.PID") */
+} vres_outfile;
+
+/* Prepare an atomic write of path: checks the directory exists and is writable and
+ * chooses the temporary name. Returns 0, or -1 after printing why (naming path). */
+int vres_out_begin(vres_outfile *o, const char *path);
+/* Rename the temporary file to the final name. Returns 0, or -1 after printing why. */
+int vres_out_commit(vres_outfile *o);
+/* Remove the temporary file (after a failure) and free the names. */
+void vres_out_abort(vres_outfile *o);
+
+/* Read a whole file ("-" = stdin) into a new buffer (NUL-terminated beyond *len).
+ * Returns 0, or -1 after printing why (naming path). */
+int vres_read_all(const char *path, unsigned char **buf, size_t *len);
+/* Write a buffer to stdout completely. Returns 0, or -1 after printing why. */
+int vres_write_stdout(const void *buf, size_t len);
+/* Create a directory and its parents (like mkdir -p). Returns 0, or -1 after printing why. */
+int vres_mkdirs(const char *path);
+
+#endif

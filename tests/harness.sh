@@ -1,0 +1,57 @@
+# tests/harness.sh - sourced by every tool behaviour test (tests/<tool>/test_*.sh).
+# Each check prints one TAP line ("ok - name" / "not ok - name"); tests/run counts them.
+# Tools under test: $BIN/vres-* (the normal build) and $ASAN/vres-* (AddressSanitizer build,
+# used for bad-input tests so that a crash or memory error fails the test).
+set -u
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BIN=$ROOT/bin
+ASAN=$ROOT/build/asan/bin
+CASES=$ROOT/cases
+T=$(mktemp -d "${TMPDIR:-/tmp}/vres-test.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+export ASAN_OPTIONS=abort_on_error=1:detect_leaks=1
+export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+export LSAN_OPTIONS=suppressions=$ROOT/tests/lsan.supp:print_suppressions=0
+export OMP_NUM_THREADS=${OMP_NUM_THREADS:-2}
+OUT=$T/stdout
+ERR=$T/stderr
+STATUS=0
+
+ok() { echo "ok - $*"; }
+notok() { echo "not ok - $*"; }
+
+# run CMD...: run a command, keeping stdout in $OUT, stderr in $ERR and the exit code in $STATUS.
+run() { "$@" >"$OUT" 2>"$ERR"; STATUS=$?; }
+
+# expect STATUS NAME CMD...: run CMD and check its exit status; on failure show stderr.
+expect() {
+    local want=$1 name=$2; shift 2
+    run "$@"
+    if [ "$STATUS" -eq "$want" ]; then ok "$name"; else
+        notok "$name (exit $STATUS, wanted $want)"; sed 's/^/#   /' "$ERR" | head -20; fi
+}
+
+# expect_err STATUS PATTERN NAME CMD...: CMD exits STATUS, stderr matches PATTERN (grep -E),
+# and AddressSanitizer/UBSan reported nothing.
+expect_err() {
+    local want=$1 pat=$2 name=$3; shift 3
+    run "$@"
+    if [ "$STATUS" -ne "$want" ]; then
+        notok "$name (exit $STATUS, wanted $want)"; sed 's/^/#   /' "$ERR" | head -20
+    elif grep -q -E 'Sanitizer|runtime error' "$ERR"; then
+        notok "$name (sanitizer report)"; sed 's/^/#   /' "$ERR" | head -30
+    elif ! grep -q -E -- "$pat" "$ERR"; then
+        notok "$name (stderr lacks /$pat/)"; sed 's/^/#   /' "$ERR" | head -20
+    else ok "$name"; fi
+}
+
+# check NAME CONDITION...: a plain assertion, e.g. check "count" [ "$n" -eq 3 ].
+check() {
+    local name=$1; shift
+    if "$@"; then ok "$name"; else notok "$name"; fi
+}
+
+# nothing_in DIR NAME: the directory holds no files (nothing half-written).
+nothing_in() {
+    if [ -z "$(ls -A "$1" 2>/dev/null)" ]; then ok "$2"; else notok "$2 (found: $(ls -A "$1" | tr '\n' ' '))"; fi
+}
