@@ -5,7 +5,8 @@
 set -u
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BIN=$ROOT/bin
-ASAN=$ROOT/build/asan/bin
+VRES_BUILD=${VRES_BUILD:-build}
+ASAN=$ROOT/$VRES_BUILD/asan/bin
 CASES=$ROOT/cases
 T=$(mktemp -d "${TMPDIR:-/tmp}/vres-test.XXXXXX")
 trap 'rm -rf "$T"' EXIT
