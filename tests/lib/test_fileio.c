@@ -1,0 +1,130 @@
+/* test_fileio.c - unit tests of lib/fileio.c: atomic output (nothing under the final name
+ * until commit, nothing left after abort), refusal of missing or unwritable directories,
+ * whole-file reading and mkdir -p. */
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "fileio.h"
+
+static char dir[64];
+
+/* A fresh temporary directory per test. */
+static void setup(void)
+{
+    strcpy(dir, "/tmp/vres-fileio-XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+}
+
+/* Remove the test directory tree. */
+static void teardown(void)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "chmod -R u+w %s; rm -rf %s", dir, dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+
+/* 1 when path exists. */
+static int exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+START_TEST(atomic_commit)
+{
+    char path[128];
+    snprintf(path, sizeof path, "%s/out.h5", dir);
+    vres_outfile o;
+    ck_assert_int_eq(vres_out_begin(&o, path), 0);
+    FILE *f = fopen(o.tmp, "w");
+    fputs("data", f);
+    fclose(f);
+    ck_assert(!exists(path)); /* the final name appears only at commit */
+    ck_assert_int_eq(vres_out_commit(&o), 0);
+    ck_assert(exists(path));
+    unsigned char *buf;
+    size_t len;
+    ck_assert_int_eq(vres_read_all(path, &buf, &len), 0);
+    ck_assert_uint_eq(len, 4);
+    ck_assert_str_eq((char *)buf, "data");
+    free(buf);
+}
+END_TEST
+
+START_TEST(atomic_abort_leaves_nothing)
+{
+    char path[128];
+    snprintf(path, sizeof path, "%s/out.h5", dir);
+    vres_outfile o;
+    ck_assert_int_eq(vres_out_begin(&o, path), 0);
+    FILE *f = fopen(o.tmp, "w");
+    fputs("half", f);
+    fclose(f);
+    vres_out_abort(&o);
+    char cmd[160];
+    snprintf(cmd, sizeof cmd, "test -z \"$(ls -A %s)\"", dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+END_TEST
+
+START_TEST(refuses_bad_directories)
+{
+    char path[160];
+    vres_outfile o;
+    snprintf(path, sizeof path, "%s/missing/out.h5", dir);
+    ck_assert_int_eq(vres_out_begin(&o, path), -1);
+    ck_assert_int_eq(vres_out_begin(&o, dir), -1); /* a directory is not a file */
+    if (geteuid() != 0) { /* root writes anywhere: the permission check only means something for users */
+        chmod(dir, 0555);
+        snprintf(path, sizeof path, "%s/out.h5", dir);
+        ck_assert_int_eq(vres_out_begin(&o, path), -1);
+    }
+}
+END_TEST
+
+START_TEST(read_missing_file_fails)
+{
+    unsigned char *buf;
+    size_t len;
+    char path[128];
+    snprintf(path, sizeof path, "%s/none", dir);
+    ck_assert_int_eq(vres_read_all(path, &buf, &len), -1);
+}
+END_TEST
+
+START_TEST(mkdirs_nested)
+{
+    char path[160];
+    snprintf(path, sizeof path, "%s/a/b/c", dir);
+    ck_assert_int_eq(vres_mkdirs(path), 0);
+    ck_assert(exists(path));
+    ck_assert_int_eq(vres_mkdirs(path), 0); /* already there is fine */
+    snprintf(path, sizeof path, "%s/file", dir);
+    FILE *f = fopen(path, "w");
+    fclose(f);
+    snprintf(path, sizeof path, "%s/file/sub", dir);
+    ck_assert_int_eq(vres_mkdirs(path), -1); /* a file in the way */
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("fileio");
+    TCase *tc = tcase_create("fileio");
+    tcase_add_checked_fixture(tc, setup, teardown);
+    tcase_add_test(tc, atomic_commit);
+    tcase_add_test(tc, atomic_abort_leaves_nothing);
+    tcase_add_test(tc, refuses_bad_directories);
+    tcase_add_test(tc, read_missing_file_fails);
+    tcase_add_test(tc, mkdirs_nested);
+    suite_add_tcase(s, tc);
+    SRunner *sr = srunner_create(s);
+    srunner_run_all(sr, CK_NORMAL);
+    int nf = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return nf != 0;
+}
