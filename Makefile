@@ -7,6 +7,7 @@
 # tests/lib/test_*.c -> unit tests (Check).
 
 VERSION   := 0.1.0
+comma     := ,
 PREFIX    ?= /usr/local
 CC        := gcc
 CXX       := g++
@@ -15,7 +16,7 @@ GIT_REV   := $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)
 PKGS      := hdf5-serial libxml-2.0
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS  := $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lhdf5_hl
-HDF5_LIBDIR := $(shell pkg-config --variable=libdir hdf5-serial 2>/dev/null)
+HDF5_LIBDIR := $(patsubst -L%,%,$(filter -L%,$(shell pkg-config --libs-only-L hdf5-serial 2>/dev/null)))
 VTK_INC   ?= /usr/include/vtk-9.1
 VTK_LIBS  ?= -lvtkIOXML-9.1 -lvtkIOCore-9.1 -lvtkCommonExecutionModel-9.1 -lvtkCommonDataModel-9.1 -lvtkCommonCore-9.1
 CHECK_LIBS := $(shell pkg-config --libs check 2>/dev/null)
@@ -24,7 +25,7 @@ OPT       ?= -O2 -g
 WARN      := -Wall -Wextra
 CFLAGS    := -std=c11 $(WARN) $(OPT) -fopenmp -D_POSIX_C_SOURCE=200809L -Ilib -Ikernels $(PKG_CFLAGS)
 CXXFLAGS  := -std=c++17 $(WARN) $(OPT) -Ilib -isystem $(VTK_INC)
-LDLIBS    := $(PKG_LIBS) $(VTK_LIBS) -fopenmp -lm -lstdc++ -Wl,-rpath,$(HDF5_LIBDIR)
+LDLIBS    := $(PKG_LIBS) $(VTK_LIBS) -fopenmp -lm -lstdc++ $(if $(HDF5_LIBDIR),-Wl$(comma)-rpath$(comma)$(HDF5_LIBDIR))
 
 # CUDA: built wherever nvcc is found; CUDA_ARCH kept short (one arch + its PTX for newer GPUs).
 NVCC      ?= $(shell command -v nvcc 2>/dev/null || (test -x /usr/local/cuda/bin/nvcc && echo /usr/local/cuda/bin/nvcc))
@@ -44,9 +45,8 @@ LIB_CC    := $(wildcard lib/*.cc)
 TOOL_SRC  := $(wildcard tools/vres-*.c)
 TOOLS     := $(patsubst tools/%.c,bin/%,$(TOOL_SRC))
 TEST_SRC  := $(wildcard tests/lib/test_*.c)
-TESTS     := $(patsubst tests/lib/%.c,build/tests/%,$(TEST_SRC))
-
-B         := build
+B         ?= build
+TESTS     := $(patsubst tests/lib/%.c,$(B)/tests/%,$(TEST_SRC))
 LIB_OBJ   := $(patsubst lib/%.c,$(B)/obj/%.o,$(LIB_C)) $(patsubst lib/%.cc,$(B)/obj/%.o,$(LIB_CC)) \
              $(patsubst lib/%.cu,$(B)/obj/%.cu.o,$(CU_SRC))
 LIBVRES   := $(B)/libvres.a
@@ -94,7 +94,7 @@ asan: $(ASAN_TOOLS)
 
 # The whole test suite: unit tests, tool behaviour tests, ASan runs on bad input.
 check: all asan $(TESTS)
-	bash tests/run
+	VRES_BUILD=$(B) bash tests/run
 
 demo: all
 	$(MAKE) -f pipelines/demo.mk
@@ -111,4 +111,5 @@ clean:
 	rm -rf $(B) bin demo
 
 .PHONY: all asan check demo install clean
+.SECONDARY: $(ASAN_OBJ) $(LIB_OBJ)
 .DELETE_ON_ERROR:
