@@ -1,0 +1,69 @@
+/* wendland.h - the Wendland C2 smoothing kernel in 2D and 3D, support 2h, written once for
+ * the CPU and CUDA (see device.h):
+ *   W(r) = alpha_d (1 - q/2)^4 (2q + 1),  q = r/h <= 2,  W = 0 beyond,
+ *   alpha_2D = 7 / (4 pi h^2),  alpha_3D = 21 / (16 pi h^3)  (so that W integrates to 1).
+ * Its radial derivative is dW/dr = -5 alpha q (1 - q/2)^3 / h, which vanishes at r = 0, so
+ * the gradient is written as grad_a W_ab = F(r) (x_a - x_b) with F = (dW/dr)/r =
+ * -5 alpha (1 - q/2)^3 / h^2: finite at r = 0 and free of a division by r (DualSPHysics'
+ * form). The constants depend only on h and the dimension, so a domain computes them once
+ * (vres_wendland_make) and passes the small struct by value to its interaction loops. */
+#ifndef VRES_KERNELS_WENDLAND_H
+#define VRES_KERNELS_WENDLAND_H
+
+#include <math.h>
+#include "device.h"
+
+#define VRES_WENDLAND_PI 3.14159265358979323846 /* M_PI is not in strict C11's math.h */
+
+/* The constants of one kernel: everything W, dW/dr and F need besides r. */
+typedef struct vres_wendland {
+    double h;     /* smoothing length (m); the support radius is 2h */
+    double alpha; /* normalisation alpha_d (m^-dim) */
+    double fgrad; /* -5 alpha / h^2: F(0), the gradient factor's scale (m^-(dim+2)) */
+} vres_wendland;
+
+/* Smoothing length (m) from the particle spacing dp (m): h = coefh sqrt(dim) dp, the
+ * DualSPHysics convention (h = coefh sqrt(2 dp^2) in 2D, sqrt(3 dp^2) in 3D). */
+VRES_HD static inline double vres_wendland_h(int dim, double coefh, double dp)
+{
+    return coefh * sqrt((double)dim) * dp;
+}
+
+/* The kernel constants for dimension dim (2 or 3) and smoothing length h (m). */
+VRES_HD static inline vres_wendland vres_wendland_make(int dim, double h)
+{
+    vres_wendland k;
+    k.h = h;
+    k.alpha = dim == 2 ? 7.0 / (4.0 * VRES_WENDLAND_PI * h * h) : 21.0 / (16.0 * VRES_WENDLAND_PI * h * h * h);
+    k.fgrad = -5.0 * k.alpha / (h * h);
+    return k;
+}
+
+/* W(r) (m^-dim) at distance r >= 0 (m); exactly 0 for r >= 2h. */
+VRES_HD static inline double vres_wendland_w(vres_wendland k, double r)
+{
+    double q = r / k.h;
+    if (q >= 2.0) return 0.0;
+    double t = 1.0 - 0.5 * q, t2 = t * t;
+    return k.alpha * t2 * t2 * (2.0 * q + 1.0);
+}
+
+/* dW/dr (m^-(dim+1)) at distance r >= 0 (m); <= 0, and 0 at r = 0 and for r >= 2h. */
+VRES_HD static inline double vres_wendland_dwdr(vres_wendland k, double r)
+{
+    double q = r / k.h;
+    if (q >= 2.0) return 0.0;
+    double t = 1.0 - 0.5 * q;
+    return -5.0 * k.alpha * q * t * t * t / k.h;
+}
+
+/* F(r) = (dW/dr)/r (m^-(dim+2)), so that grad_a W_ab = F(r_ab) (x_a - x_b); 0 for r >= 2h. */
+VRES_HD static inline double vres_wendland_f(vres_wendland k, double r)
+{
+    double q = r / k.h;
+    if (q >= 2.0) return 0.0;
+    double t = 1.0 - 0.5 * q;
+    return k.fgrad * t * t * t;
+}
+
+#endif

@@ -1,0 +1,209 @@
+/* cells.c - building the cell-linked list and sorting particle arrays by it (see cells.h). */
+#include "cells.h"
+#include "log.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Most cells a box may have: the offsets alone then take 2 GiB. A box this sparse needs a hashed
+ * grid, which vres does not have; saying so beats exhausting memory. */
+#define VRES_CELLS_MAX ((size_t)1 << 28)
+
+/* Widest per-particle element vres_cells_gather moves (a double[3] position), bytes. */
+#define VRES_CELLS_ELEM_MAX 24
+
+int vres_cells_init(vres_cells *g, int dim, double radius, const double lo[3], const double hi[3],
+                    const int periodic[3])
+{
+    static const char axis[3] = {'x', 'y', 'z'};
+    memset(g, 0, sizeof *g);
+    if (dim != 2 && dim != 3) {
+        vres_error("cells: dimension %d (expected 2 or 3)", dim);
+        return -1;
+    }
+    if (!(radius > 0) || !isfinite(radius)) {
+        vres_error("cells: search radius %g m (expected a positive finite length)", radius);
+        return -1;
+    }
+    g->dim = dim;
+    double total = 1;
+    for (int a = 0; a < 3; a++) {
+        g->lo[a] = lo[a];
+        g->hi[a] = hi[a];
+        g->periodic[a] = periodic && periodic[a];
+        if (a == 1 && dim == 2) { /* the x-z plane: one layer whatever y holds */
+            if (g->periodic[a]) {
+                vres_error("cells: a 2D case (x-z plane) cannot be periodic in y");
+                return -1;
+            }
+            g->nc[a] = 1;
+            g->cell[a] = radius;
+            continue;
+        }
+        double span = hi[a] - lo[a];
+        if (!isfinite(lo[a]) || !isfinite(hi[a]) || span < 0) {
+            vres_error("cells: box %c range [%g, %g] m is not a finite interval", axis[a], lo[a], hi[a]);
+            return -1;
+        }
+        double nc;
+        if (g->periodic[a]) {
+            if (span < radius) {
+                vres_error("cells: period %g m along %c is shorter than the search radius %g m", span, axis[a],
+                           radius);
+                return -1;
+            }
+            /* whole cells over the period, each >= radius, so the wrap lands on a cell edge */
+            nc = floor(span / radius);
+            if (nc > 1 && span / nc < radius) nc -= 1; /* rounding of the division */
+            g->cell[a] = span / nc;
+            g->period[a] = span;
+        } else {
+            nc = fmax(1.0, ceil(span / radius));
+            g->cell[a] = radius;
+        }
+        total *= nc;
+        if (total > (double)VRES_CELLS_MAX) {
+            vres_error("cells: box [%g,%g]x[%g,%g]x[%g,%g] m needs over %zu cells of %g m", lo[0], hi[0], lo[1],
+                       hi[1], lo[2], hi[2], VRES_CELLS_MAX, radius);
+            return -1;
+        }
+        g->nc[a] = (int)nc;
+    }
+    g->ncells = (size_t)g->nc[0] * (size_t)g->nc[1] * (size_t)g->nc[2];
+    g->begin = vres_xcalloc(g->ncells + 2, sizeof *g->begin);
+    g->first_out = (size_t)-1;
+    return 0;
+}
+
+void vres_cells_bbox(const double *pos, size_t n, double lo[3], double hi[3])
+{
+    double x0 = INFINITY, y0 = INFINITY, z0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, z1 = -INFINITY;
+#pragma omp parallel for reduction(min : x0, y0, z0) reduction(max : x1, y1, z1)
+    for (size_t i = 0; i < n; i++) {
+        const double *p = pos + 3 * i;
+        /* comparisons with NaN are false, so NaN never enters the box */
+        if (p[0] < x0) x0 = p[0];
+        if (p[0] > x1) x1 = p[0];
+        if (p[1] < y0) y0 = p[1];
+        if (p[1] > y1) y1 = p[1];
+        if (p[2] < z0) z0 = p[2];
+        if (p[2] > z1) z1 = p[2];
+    }
+    lo[0] = x0, lo[1] = y0, lo[2] = z0;
+    hi[0] = x1, hi[1] = y1, hi[2] = z1;
+}
+
+size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
+{
+    if (n > g->cap) {
+        size_t cap = n + n / 4; /* room to grow a little without reallocating every step */
+        g->perm = vres_xrealloc(g->perm, cap * sizeof *g->perm);
+        g->key = vres_xrealloc(g->key, cap * sizeof *g->key);
+        g->scratch = vres_xrealloc(g->scratch, cap * VRES_CELLS_ELEM_MAX);
+        g->cap = cap;
+    }
+    size_t nc = g->ncells, *key = g->key, *begin = g->begin;
+    g->n = n;
+
+    /* each particle's cell: the only per-particle arithmetic, done in parallel */
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        int c[3];
+        key[i] = vres_cells_locate(g, pos + 3 * i, c)
+                     ? ((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0]
+                     : nc;
+    }
+
+    /* counting sort, serial so that the order within a cell is the input order (reproducible
+       sums); it is a few memory passes, cheap next to one interaction step */
+    memset(begin, 0, (nc + 2) * sizeof *begin);
+    for (size_t i = 0; i < n; i++) begin[key[i]]++;
+    size_t sum = 0;
+    for (size_t c = 0; c <= nc; c++) { /* counts -> first slot of each cell */
+        size_t k = begin[c];
+        begin[c] = sum;
+        sum += k;
+    }
+    for (size_t i = 0; i < n; i++) g->perm[begin[key[i]]++] = i;
+    /* begin[c] now is the end of cell c: shift back by one cell */
+    memmove(begin + 1, begin, (nc + 1) * sizeof *begin);
+    begin[0] = 0;
+
+    g->nout = n - begin[nc];
+    g->first_out = g->nout ? g->perm[begin[nc]] : (size_t)-1; /* stable: the first is the smallest */
+    return g->nout;
+}
+
+/* Gather n elements of w words of type T from src by perm into dst. */
+#define VRES_GATHER(T, dst, src, perm, n, w)                                       \
+    do {                                                                           \
+        T *d_ = (T *)(dst);                                                        \
+        const T *s_ = (const T *)(src);                                            \
+        _Pragma("omp parallel for schedule(static)")                               \
+        for (size_t k = 0; k < (n); k++)                                           \
+            for (size_t j = 0; j < (w); j++) d_[k * (w) + j] = s_[(perm)[k] * (w) + j]; \
+    } while (0)
+
+void vres_cells_gather(vres_cells *g, void *array, size_t elem_size)
+{
+    if (!array || !g->n) return;
+    if (elem_size == 0 || elem_size > VRES_CELLS_ELEM_MAX) {
+        vres_error("cells: cannot gather elements of %zu bytes (at most %d)", elem_size, VRES_CELLS_ELEM_MAX);
+        return;
+    }
+    /* move the widest word that divides the element: arrays come from malloc, so aligned */
+    if (elem_size % 8 == 0)
+        VRES_GATHER(uint64_t, g->scratch, array, g->perm, g->n, elem_size / 8);
+    else if (elem_size % 4 == 0)
+        VRES_GATHER(uint32_t, g->scratch, array, g->perm, g->n, elem_size / 4);
+    else
+        VRES_GATHER(uint8_t, g->scratch, array, g->perm, g->n, elem_size);
+    memcpy(array, g->scratch, g->n * elem_size);
+}
+
+int vres_cells_reorder(vres_cells *g, vres_domain *d)
+{
+    if (d->n != g->n) {
+        vres_error("cells: domain has %zu particles but the cells were built for %zu", d->n, g->n);
+        return -1;
+    }
+    vres_cells_gather(g, d->pos, 3 * sizeof *d->pos);
+    vres_cells_gather(g, d->vel, 3 * sizeof *d->vel);
+    vres_cells_gather(g, d->rho, sizeof *d->rho);
+    vres_cells_gather(g, d->press, sizeof *d->press);
+    vres_cells_gather(g, d->mass_p, sizeof *d->mass_p);
+    vres_cells_gather(g, d->type, sizeof *d->type);
+    vres_cells_gather(g, d->mk, sizeof *d->mk);
+    vres_cells_gather(g, d->id, sizeof *d->id);
+    vres_cells_gather(g, d->normal, 3 * sizeof *d->normal);
+    return 0;
+}
+
+void vres_cells_wrap(const vres_cells *g, double *pos, size_t n)
+{
+    for (int a = 0; a < 3; a++) {
+        if (!g->periodic[a]) continue;
+        double lo = g->lo[a], hi = g->hi[a], L = g->period[a];
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            double u = pos[3 * i + a];
+            if (u >= lo && u < hi) continue; /* the usual case; NaN falls through and stays NaN */
+            u = lo + fmod(u - lo, L);
+            if (u < lo) u += L;
+            if (u >= hi) u = lo; /* -tiny + L rounds to L: that point is lo */
+            pos[3 * i + a] = u;
+        }
+    }
+}
+
+void vres_cells_free(vres_cells *g)
+{
+    free(g->begin);
+    free(g->perm);
+    free(g->key);
+    free(g->scratch);
+    memset(g, 0, sizeof *g);
+    g->first_out = (size_t)-1;
+}
