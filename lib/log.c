@@ -1,4 +1,5 @@
 /* log.c - diagnostics and never-failing allocation (see log.h). */
+#define _GNU_SOURCE /* vasprintf */
 #include "log.h"
 
 #include <stdarg.h>
@@ -92,12 +93,10 @@ char *vres_xstrdup(const char *s)
 char *vres_xasprintf(const char *fmt, ...)
 {
     va_list ap;
+    char *s = NULL;
     va_start(ap, fmt);
-    int n = vsnprintf(NULL, 0, fmt, ap);
+    int n = vasprintf(&s, fmt, ap);
     va_end(ap);
-    char *s = vres_xmalloc((unsigned long)n + 1);
-    va_start(ap, fmt);
-    vsnprintf(s, (size_t)n + 1, fmt, ap);
-    va_end(ap);
+    if (n < 0) oom(0);
     return s;
 }

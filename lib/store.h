@@ -168,6 +168,8 @@ typedef struct vres_store {
     vres_box *box;        /* refinement boxes, parents before children */
     char *gauges_xml;     /* the case's <gauges> element as XML text, NULL when none */
     char *inout_xml;      /* the case's <inout> element as XML text, NULL when none */
+    char *code;           /* build that wrote the file read (its /Code group, one line); NULL for a
+                             store made in memory: writing always records this build instead */
 } vres_store;
 
 /* A new empty store (dim 3, no domains). */
@@ -195,5 +197,9 @@ int vres_store_write(const vres_store *s, const char *path);
 /* Read a store from path ("-" = stdin). Returns NULL after printing one message naming the
  * file and what is wrong (missing, not HDF5, not a vres store, truncated, inconsistent). */
 vres_store *vres_store_read(const char *path);
+/* Read everything but the particle arrays (cheap listing of many snapshots): each domain
+ * has n set from its count, cap 0 and every array NULL. Same checks and messages as
+ * vres_store_read otherwise. */
+vres_store *vres_store_read_header(const char *path);
 
 #endif
