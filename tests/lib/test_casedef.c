@@ -1,0 +1,581 @@
+/* test_casedef.c - unit tests of the case reader (lib/casedef*.c): GenCase's automatic
+ * constants against values computed by hand, execution parameters (defaults, notes, errors,
+ * --set), simulationdomain forms, nested refinement boxes, initial density, particle order,
+ * bodies and the pre-flight checks. Cases are small 2D boxes at dp 0.1 so the expected
+ * numbers follow from the lattice by hand. */
+#include <check.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "casedef.h"
+#include "casedef_int.h"
+#include "eos.h"
+#include "log.h"
+#include "store.h"
+
+/* Default geometry: 2D (y extent zero), dp 0.1, domain -1..2 in x and z. */
+#define DEF2D                                                                                      \
+    "<definition dp=\"0.1\"><pointmin x=\"-1\" y=\"0\" z=\"-1\"/><pointmax x=\"2\" y=\"0\" z=\"2\"/>" \
+    "</definition>"
+/* A water box 0..1 x 0..0.5 (11 x 6 = 66 nodes; draw mode full: surface nodes included). */
+#define WATER                                                                                      \
+    "<setdrawmode mode=\"full\"/><setmkfluid mk=\"0\"/><drawbox><boxfill>solid</boxfill><point x=\"0\" y=\"-1\" z=\"0\"/>"     \
+    "<size x=\"1\" y=\"2\" z=\"0.5\"/></drawbox>"
+/* A tank floor and walls around it: bottom z=-0.1 and sides x=-0.1, x=1.1 up to z=1. */
+#define TANK                                                                                       \
+    "<setmkbound mk=\"0\"/><drawbox><boxfill>bottom | left | right</boxfill>"                     \
+    "<point x=\"-0.1\" y=\"-1\" z=\"-0.1\"/><size x=\"1.2\" y=\"2\" z=\"1.1\"/></drawbox>"
+
+/* A whole case from its parts (any may be ""). Returns a static buffer. */
+static const char *mkcase(const char *consts, const char *def, const char *cmds, const char *extra, const char *exec)
+{
+    static char buf[16384];
+    snprintf(buf, sizeof buf,
+             "<?xml version=\"1.0\"?>\n<case><casedef><constantsdef>%s</constantsdef>"
+             "<geometry>%s<commands><mainlist>%s</mainlist></commands></geometry>%s</casedef>"
+             "<execution>%s</execution></case>\n",
+             consts, def, cmds, extra, exec);
+    return buf;
+}
+
+/* Read xml with overrides (NULL-terminated list) and --dp dp (0: none). */
+static vres_store *rd_opts(const char *xml, double dp, ...)
+{
+    const char *sets[16];
+    int n = 0;
+    va_list ap;
+    va_start(ap, dp);
+    for (const char *a; n < 15 && (a = va_arg(ap, const char *));) sets[n++] = a;
+    va_end(ap);
+    vres_case_opts o = {dp, n, sets};
+    return vres_case_read(xml, strlen(xml), "t.xml", ".", &o);
+}
+
+/* Read xml with no options. */
+static vres_store *rd(const char *xml)
+{
+    return rd_opts(xml, 0, NULL);
+}
+
+/* Parameter value, failing the test when absent. */
+static double par(const vres_store *s, const char *name)
+{
+    const vres_param *p = vres_params_find(&s->params, name);
+    ck_assert_msg(p != NULL, "parameter %s missing", name);
+    return p->v[0];
+}
+
+/* Origin of a parameter. */
+static const char *origin(const vres_store *s, const char *name)
+{
+    const vres_param *p = vres_params_find(&s->params, name);
+    ck_assert_msg(p != NULL, "parameter %s missing", name);
+    return p->origin;
+}
+
+#define NEAR(a, b, rel)                                                                            \
+    ck_assert_msg(fabs((double)(a) - (double)(b)) <= (rel) * fabs((double)(b)), "%.10g != %.10g", (double)(a), \
+                  (double)(b))
+
+/* ---- constants ---- */
+
+/* Water 0..0.5 m high: hswl 0.5 (fluid extent), speedsystem sqrt(9.81*0.5), speedsound 20x,
+ * B = 400*9.81*0.5*1000/7 = 280285.714..., h = 0.866025*sqrt(2)*0.1, masses 1000*0.1^2. */
+START_TEST(constants_auto_2d)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "", ""));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(s->dim, 2);
+    NEAR(par(s, "hswl"), 0.5, 1e-12);
+    ck_assert_str_eq(origin(s, "hswl"), "auto");
+    NEAR(par(s, "speedsystem"), sqrt(9.81 * 0.5), 1e-12);
+    NEAR(par(s, "cs0"), 20 * sqrt(9.81 * 0.5), 1e-12);
+    NEAR(par(s, "B"), 1962.0 * 1000 / 7, 1e-12);
+    NEAR(par(s, "h"), 0.866025 * sqrt(2.0) * 0.1, 1e-12);
+    NEAR(par(s, "massfluid"), 10.0, 1e-12);
+    NEAR(par(s, "massbound"), 10.0, 1e-12);
+    NEAR(par(s, "rhop0"), 1000, 0);
+    ck_assert_str_eq(origin(s, "rhop0"), "default");
+    NEAR(par(s, "cflnumber"), 0.2, 0);
+    const vres_param *g = vres_params_find(&s->params, "gravity");
+    ck_assert_int_eq(g->n, 3);
+    NEAR(g->v[2], -9.81, 0);
+    vres_store_free(s);
+}
+END_TEST
+
+/* hdp gives h = hdp*dp; with coefsound 5 the rule max(coefsound*speedsystem, 10 sqrt(g hswl))
+ * takes the second term; an explicit speedsound and an explicit b are used as given. */
+START_TEST(constants_hdp_and_explicit)
+{
+    vres_store *s = rd(mkcase("<hdp value=\"2\"/><coefsound value=\"5\"/>", DEF2D, WATER, "", ""));
+    ck_assert_ptr_nonnull(s);
+    NEAR(par(s, "h"), 0.2, 1e-12);
+    NEAR(par(s, "cs0"), 10 * sqrt(9.81 * 0.5), 1e-12);
+    vres_store_free(s);
+    s = rd(mkcase("<speedsound value=\"30\" auto=\"false\"/><gamma value=\"7\"/>", DEF2D, WATER, "", ""));
+    ck_assert_ptr_nonnull(s);
+    NEAR(par(s, "B"), 900.0 * 1000 / 7, 1e-12);
+    ck_assert_str_eq(origin(s, "B"), "auto");
+    vres_store_free(s);
+    s = rd(mkcase("<b value=\"70000\" auto=\"false\"/>", DEF2D, WATER, "", ""));
+    ck_assert_ptr_nonnull(s);
+    NEAR(par(s, "B"), 70000, 0);
+    NEAR(par(s, "cs0"), sqrt(7 * 70000 / 1000.0), 1e-12); /* Cs0 = sqrt(gamma B / rho0) */
+    vres_store_free(s);
+}
+END_TEST
+
+/* 3D: h = coefh*sqrt(3 dp^2); the default coefh 0.866025 gives 1.5 dp to 6 digits. */
+START_TEST(constants_3d)
+{
+    const char *def = "<definition dp=\"0.1\"><pointmin x=\"-1\" y=\"-1\" z=\"-1\"/><pointmax x=\"2\" y=\"1\" "
+                      "z=\"2\"/></definition>";
+    const char *cmd = "<setdrawmode mode=\"full\"/><setmkfluid mk=\"0\"/><drawbox><boxfill>solid</boxfill>"
+                      "<point x=\"0\" y=\"0\" z=\"0\"/><size x=\"0.3\" y=\"0.3\" z=\"0.3\"/></drawbox>";
+    vres_store *s = rd(mkcase("", def, cmd, "", ""));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(s->dim, 3);
+    NEAR(par(s, "h"), 0.866025 * sqrt(3.0) * 0.1, 1e-12);
+    NEAR(par(s, "h"), 0.15, 1e-6);
+    NEAR(par(s, "massfluid"), 1.0, 1e-12);
+    ck_assert_uint_eq(s->dom[0].n, 64);
+    vres_store_free(s);
+}
+END_TEST
+
+/* Values DualSPHysics rejects. */
+START_TEST(constants_errors)
+{
+    ck_assert_ptr_null(rd(mkcase("<cflnumber value=\"0\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<cflnumber value=\"1.5\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<rhop0 value=\"0\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<gamma value=\"-7\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<coefh value=\"1\"/><hdp value=\"2\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<lattice bound=\"2\" fluid=\"1\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<rhopgradient value=\"4\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<gravity x=\"0\" y=\"0\" z=\"0\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<unknownconst value=\"1\"/>", DEF2D, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("<rhop0 value=\"1000\" colour=\"red\"/>", DEF2D, WATER, "", "")));
+}
+END_TEST
+
+/* ---- geometry, variables, overrides ---- */
+
+/* dp <= 0, dp larger than the domain, empty geometry, undefined variable, unknown element. */
+START_TEST(geometry_errors)
+{
+    const char *neg = "<definition dp=\"-0.1\"><pointmin x=\"-1\" y=\"0\" z=\"-1\"/><pointmax x=\"2\" y=\"0\" "
+                      "z=\"2\"/></definition>";
+    const char *big = "<definition dp=\"5\"><pointmin x=\"-1\" y=\"0\" z=\"-1\"/><pointmax x=\"2\" y=\"0\" "
+                      "z=\"2\"/></definition>";
+    ck_assert_ptr_null(rd(mkcase("", neg, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("", big, WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, "<setmkfluid mk=\"0\"/>", "", "")));
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, "<newvar a=\"b+1\"/>" WATER, "", "")));
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER "<drawsphere radius=\"1\"/>", "", "")));
+    ck_assert_ptr_null(rd("<case><casedef>"));
+    ck_assert_ptr_null(rd("<notacase/>"));
+}
+END_TEST
+
+/* #expressions over variables and GenCase's predefined Dp; --set wins over newvar; --dp. */
+START_TEST(variables_and_overrides)
+{
+    const char *cmd = "<newvar W=\"0.5\" H=\"Dp*3\"/><setdrawmode mode=\"full\"/><setmkfluid mk=\"0\"/><drawbox><boxfill>solid</boxfill>"
+                      "<point x=\"0\" y=\"0\" z=\"0\"/><size x=\"#W\" y=\"0\" z=\"#H\"/></drawbox>";
+    vres_store *s = rd(mkcase("", DEF2D, cmd, "", ""));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_uint_eq(s->dom[0].n, 6 * 4); /* x 0..0.5, z 0..0.3 */
+    vres_store_free(s);
+    s = rd_opts(mkcase("", DEF2D, cmd, "", ""), 0, "W=1", NULL);
+    ck_assert_ptr_nonnull(s);
+    ck_assert_uint_eq(s->dom[0].n, 11 * 4);
+    ck_assert_int_eq(s->noverrides, 1);
+    ck_assert_str_eq(s->overrides[0], "W=1");
+    vres_store_free(s);
+    s = rd_opts(mkcase("", DEF2D, cmd, "", ""), 0.05, NULL);
+    ck_assert_ptr_nonnull(s);
+    ck_assert_uint_eq(s->dom[0].n, 11 * 4); /* H = 3 dp = 0.15: z 0, 0.05, 0.1, 0.15 */
+    NEAR(par(s, "dp"), 0.05, 0);
+    ck_assert_str_eq(origin(s, "dp"), "dp");
+    ck_assert_str_eq(s->overrides[s->noverrides - 1], "dp=0.050000000000000003");
+    vres_store_free(s);
+    ck_assert_ptr_null(rd_opts(mkcase("", DEF2D, cmd, "", ""), 0, "NoSuchName=1", NULL));
+}
+END_TEST
+
+/* Walls first (fixed, then by mk), then fluid; ids 0..n-1; walls overwrite fluid they cover. */
+START_TEST(particle_order)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER TANK, "", ""));
+    ck_assert_ptr_nonnull(s);
+    const vres_domain *d = &s->dom[0];
+    size_t nw = vres_domain_count(d, VRES_FIXED), nf = vres_domain_count(d, VRES_FLUID);
+    ck_assert_uint_eq(nf, 66);           /* the tank lies outside the water: nothing overwritten */
+    ck_assert_uint_eq(nw, 13 + 2 * 11);  /* bottom x=-0.1..1.1 (13), sides z=0..1 (11 each) */
+    for (size_t i = 0; i < d->n; i++) {
+        ck_assert_uint_eq(d->id[i], i);
+        ck_assert_int_eq(d->type[i], i < nw ? VRES_FIXED : VRES_FLUID);
+    }
+    vres_store_free(s);
+}
+END_TEST
+
+/* rhopgradient 2: top of each column at rho0, below it the inverse Tait density of
+ * rho0 g depth, so that the EOS gives the hydrostatic pressure back; 1: rho0 everywhere. */
+START_TEST(initial_density)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "", ""));
+    ck_assert_ptr_nonnull(s);
+    const vres_domain *d = &s->dom[0];
+    double B = par(s, "B");
+    for (size_t i = 0; i < d->n; i++) {
+        double depth = 0.5 - d->pos[3 * i + 2];
+        double p = 1000 * 9.81 * depth;
+        NEAR(d->press[i] + 1.0, p + 1.0, 2e-4); /* float density: ~1e-7 relative of B */
+        NEAR(d->rho[i], vres_tait_density(p, 1000, B, 7), 1e-6);
+        NEAR(d->mass_p[i], 10.0, 1e-12);
+    }
+    vres_store_free(s);
+    s = rd(mkcase("<rhopgradient value=\"1\"/>", DEF2D, WATER, "", ""));
+    ck_assert_ptr_nonnull(s);
+    for (size_t i = 0; i < s->dom[0].n; i++) ck_assert_float_eq(s->dom[0].rho[i], 1000.0f);
+    vres_store_free(s);
+}
+END_TEST
+
+/* ---- execution parameters ---- */
+
+#define P(k, v) "<parameter key=\"" k "\" value=\"" v "\"/>"
+
+/* Defaults with origin "default"; given values "xml"; --set "set"; required keys absent are
+ * not invented. */
+START_TEST(parameters_defaults)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "", "<parameters>" P("Visco", "0.02") P("TimeMax", "1")
+                                                    P("TimeOut", "0.1") "</parameters>"));
+    ck_assert_ptr_nonnull(s);
+    NEAR(par(s, "StepAlgorithm"), 1, 0);
+    ck_assert_str_eq(origin(s, "StepAlgorithm"), "default");
+    NEAR(par(s, "Kernel"), 2, 0);
+    NEAR(par(s, "DensityDTvalue"), 0.1, 0);
+    NEAR(par(s, "RhopOutMin"), 700, 0);
+    NEAR(par(s, "Visco"), 0.02, 0);
+    ck_assert_str_eq(origin(s, "Visco"), "xml");
+    vres_store_free(s);
+    s = rd(mkcase("", DEF2D, WATER, "", ""));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_ptr_null(vres_params_find(&s->params, "TimeMax"));
+    vres_store_free(s);
+    s = rd_opts(mkcase("", DEF2D, WATER, "", "<parameters>" P("TimeMax", "1") "</parameters>"), 0,
+                "timemax=2.5", NULL);
+    ck_assert_ptr_nonnull(s);
+    NEAR(par(s, "TimeMax"), 2.5, 0);
+    ck_assert_str_eq(origin(s, "TimeMax"), "set");
+    vres_store_free(s);
+}
+END_TEST
+
+/* Output-only keys and unimplemented keys at their default are accepted; other values, invalid
+ * values and unknown keys are errors. */
+START_TEST(parameters_notes_and_errors)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "",
+                              "<parameters>" P("SavePosDouble", "1") P("FtIgnoreRadius", "0") P("DtFixedFile", "NONE")
+                              P("PartsOutMax", "1") "<parameter key=\"XPeriodicIncY\" value=\"1\" active=\"false\"/>"
+                              " % text DualSPHysics ignores\n</parameters>"));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_ptr_null(vres_params_find(&s->params, "SavePosDouble"));
+    const vres_param *per = vres_params_find(&s->params, "periodic");
+    ck_assert_ptr_nonnull(per);
+    ck_assert(per->v[0] == 0 && per->v[1] == 0 && per->v[2] == 0);
+    vres_store_free(s);
+    const char *bad[] = {P("FtIgnoreRadius", "1"), P("StepAlgorithm", "3"), P("Kernel", "1"), P("RigidAlgorithm", "3"),
+                         P("NoSuchKey", "1"), P("Visco", "abc"), P("TimeMax", "0"), P("DtFixedFile", "dt.csv"),
+                         P("RhopOutMin", "1100"), P("YPeriodicIncX", "0")};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char exec[512];
+        snprintf(exec, sizeof exec, "<parameters>%s</parameters>", bad[i]);
+        ck_assert_msg(rd(mkcase("", DEF2D, WATER, "", exec)) == NULL, "accepted %s", bad[i]);
+    }
+}
+END_TEST
+
+/* XZPeriodic switches x and z on; XPeriodicIncZ gives x with a z shift. */
+START_TEST(parameters_periodic)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "", "<parameters>" P("XPeriodicIncZ", "0.25") "</parameters>"));
+    ck_assert_ptr_nonnull(s);
+    const vres_param *per = vres_params_find(&s->params, "periodic"), *inc = vres_params_find(&s->params, "periodic_xinc");
+    ck_assert(per->v[0] == 1 && per->v[1] == 0 && per->v[2] == 0);
+    ck_assert_ptr_nonnull(inc);
+    NEAR(inc->v[2], 0.25, 0);
+    vres_store_free(s);
+}
+END_TEST
+
+/* ---- simulation domain ---- */
+
+START_TEST(domain_forms)
+{
+    int mode;
+    double v;
+    const char *why;
+    ck_assert_int_eq(cd_domain_value("default", 1, &mode, &v, &why), 0);
+    ck_assert_int_eq(mode, CD_DOM_DEFAULT);
+    ck_assert_int_eq(cd_domain_value(" default - 2 ", 1, &mode, &v, &why), 0);
+    ck_assert_int_eq(mode, CD_DOM_DEFVALUE);
+    NEAR(v, 2, 0);
+    ck_assert_int_eq(cd_domain_value("Default + 10%", 0, &mode, &v, &why), 0);
+    ck_assert_int_eq(mode, CD_DOM_DEFPRC);
+    NEAR(v, 0.1, 1e-15);
+    ck_assert_int_eq(cd_domain_value("0.5", 1, &mode, &v, &why), 0);
+    ck_assert_int_eq(mode, CD_DOM_FIXED);
+    NEAR(v, 0.5, 0);
+    ck_assert_int_eq(cd_domain_value("default + 2", 1, &mode, &v, &why), -1); /* posmin only subtracts */
+    ck_assert_int_eq(cd_domain_value("default - 2", 0, &mode, &v, &why), -1); /* posmax only adds */
+    ck_assert_int_eq(cd_domain_value("default-", 1, &mode, &v, &why), -1);
+    ck_assert_int_eq(cd_domain_value("5%", 0, &mode, &v, &why), -1);
+    ck_assert_int_eq(cd_domain_value("abc", 0, &mode, &v, &why), -1);
+    /* extent 0..4: -2 below, +10% above, fixed */
+    NEAR(cd_domain_apply(1, CD_DOM_DEFVALUE, 2, 0, 4), -2, 0);
+    NEAR(cd_domain_apply(0, CD_DOM_DEFPRC, 0.1, 0, 4), 4.4, 1e-15);
+    NEAR(cd_domain_apply(1, CD_DOM_DEFPRC, 0.5, 0, 4), -2, 0);
+    NEAR(cd_domain_apply(0, CD_DOM_FIXED, 7, 0, 4), 7, 0);
+    NEAR(cd_domain_apply(0, CD_DOM_DEFAULT, 7, 0, 4), 4, 0);
+}
+END_TEST
+
+/* The particles span x 0..1, z 0..0.5: posmax z default+50% gives 0.75, posmin x default-0.2
+ * gives -0.2; in 2D y stays the particles' plane. */
+START_TEST(domain_in_case)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "",
+                              "<parameters><simulationdomain><posmin x=\"default - 0.2\" y=\"default - 3\" "
+                              "z=\"default\"/><posmax x=\"default\" y=\"default\" z=\"default + 50%\"/>"
+                              "</simulationdomain></parameters>"));
+    ck_assert_ptr_nonnull(s);
+    NEAR(s->domain_min[0], -0.2, 1e-12);
+    NEAR(s->domain_max[2], 0.75, 1e-12);
+    ck_assert(s->domain_min[1] == 0 && s->domain_max[1] == 0);
+    NEAR(s->domain_max[0], 1.0, 1e-12);
+    vres_store_free(s);
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "",
+                                 "<parameters><simulationdomain><posmin x=\"default + 1\"/></simulationdomain>"
+                                 "</parameters>")));
+}
+END_TEST
+
+/* ---- refinement boxes ---- */
+
+#define SYMPL "<parameters>" P("StepAlgorithm", "2") "</parameters>"
+
+START_TEST(vres_boxes)
+{
+    const char *v = "<vres><buffsizeh v=\"2.5\"/>"
+                    "<bufferbox><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"0.5\"/><dpratio v=\"2\"/>"
+                    "  <bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><endpoint x=\"0.6\" y=\"0\" z=\"0.3\"/>"
+                    "  <dpratio value=\"2\"/><buffsizeh v=\"3\"/><overlappingh v=\"1\"/></bufferbox>"
+                    "</bufferbox>"
+                    "<bufferbox active=\"false\"><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"1\"/>"
+                    "<dpratio v=\"2\"/></bufferbox>"
+                    "<bufferbox><point x=\"1.2\" y=\"0\" z=\"0\"/><size x=\"0.5\" y=\"0\" z=\"0.5\"/><dpratio v=\"4\"/>"
+                    "</bufferbox></vres>";
+    vres_store *s = rd(mkcase("", DEF2D, WATER, v, SYMPL));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_uint_eq(s->nboxes, 3);
+    ck_assert_int_eq(s->box[0].parent, -1);
+    ck_assert_int_eq(s->box[1].parent, 0);
+    ck_assert_int_eq(s->box[2].parent, -1);
+    NEAR(s->box[0].buffsizeh, 2.5, 0); /* the section's default */
+    NEAR(s->box[1].buffsizeh, 3, 0);   /* the box's own */
+    NEAR(s->box[1].overlappingh, 1, 0);
+    NEAR(s->box[1].size[0], 0.4, 1e-12); /* from endpoint */
+    NEAR(s->box[2].dpratio, 4, 0);
+    ck_assert_int_eq(s->box[0].tracking_mk, -1);
+    vres_store_free(s);
+    /* Verlet (the default StepAlgorithm) is refused with boxes, as DualSPHysics' VRes does */
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, v, "")));
+    /* dpratio missing; tracking of an mkbound that is no body */
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER,
+                                 "<vres><bufferbox><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"1\"/>"
+                                 "</bufferbox></vres>", SYMPL)));
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER TANK,
+                                 "<vres><bufferbox><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"1\"/>"
+                                 "<dpratio v=\"2\"/><tracking mkbound=\"0\"/></bufferbox></vres>", SYMPL)));
+}
+END_TEST
+
+/* --check: a buffer narrower than 2h is named (box 1); a clean case has no problems. */
+START_TEST(check_buffers)
+{
+    const char *v = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.5\" y=\"0\" z=\"0.3\"/>"
+                    "<dpratio v=\"2\"/><buffsizeh v=\"1\"/></bufferbox></vres>";
+    vres_store *s = rd(mkcase("", DEF2D, WATER, v, SYMPL));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 1);
+    vres_store_free(s);
+    s = rd(mkcase("", DEF2D, WATER TANK, "", ""));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 0);
+    vres_store_free(s);
+}
+END_TEST
+
+/* --check: walls without normals (a strip painted by a fill, which gives no normals) crossing
+ * the buffer band at the top of a box; the same strip away from the box is fine. */
+START_TEST(check_normals)
+{
+    const char *strip = "<setmkbound mk=\"0\"/><fillbox x=\"0.5\" y=\"0\" z=\"1.5\"><modefill>void</modefill>"
+                        "<point x=\"0\" y=\"0\" z=\"1.4\"/><size x=\"1\" y=\"0\" z=\"0.2\"/></fillbox>";
+    const char *near = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.5\" y=\"0\" z=\"1.3\"/>"
+                       "<dpratio v=\"2\"/></bufferbox></vres>";
+    const char *far = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.5\" y=\"0\" z=\"0.3\"/>"
+                      "<dpratio v=\"2\"/></bufferbox></vres>";
+    char cmds[1024];
+    snprintf(cmds, sizeof cmds, "%s%s", WATER, strip);
+    vres_store *s = rd(mkcase("", DEF2D, cmds, near, SYMPL));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 1);
+    vres_store_free(s);
+    s = rd(mkcase("", DEF2D, cmds, far, SYMPL));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 0);
+    vres_store_free(s);
+}
+END_TEST
+
+/* --check: fluid outside a simulation domain cut below the particles. */
+START_TEST(check_domain)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "",
+                              "<parameters><simulationdomain><posmax x=\"0.55\"/></simulationdomain></parameters>"));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 1);
+    vres_store_free(s);
+}
+END_TEST
+
+/* ---- bodies ---- */
+
+/* A floating 3x3 block of rhopbody 500: 9 particles of 500*0.01 kg, centre at their mean,
+ * inertia sum m (x^2 + z^2) about y; a moving wall with two rectilinear segments. */
+START_TEST(bodies)
+{
+    const char *cmd = WATER "<setmkbound mk=\"1\"/><drawbox><boxfill>solid</boxfill><point x=\"1.4\" y=\"0\" "
+                      "z=\"0.1\"/><size x=\"0.2\" y=\"0\" z=\"0.2\"/></drawbox>"
+                      "<setmkbound mk=\"2\"/><drawbox><boxfill>solid</boxfill><point x=\"-0.5\" y=\"0\" z=\"0\"/>"
+                      "<size x=\"0\" y=\"0\" z=\"0.2\"/></drawbox>";
+    const char *extra = "<floatings><floating mkbound=\"1\" rhopbody=\"500\"><linearvelini x=\"1\" y=\"0\" z=\"0\"/>"
+                        "</floating></floatings>"
+                        "<motion><objreal ref=\"2\"><begin mov=\"1\" start=\"0.1\"/>"
+                        "<mvrect id=\"1\" duration=\"0.5\" next=\"2\"><vel x=\"1\" y=\"0\" z=\"0\"/></mvrect>"
+                        "<mvrot id=\"2\" duration=\"-1\" anglesunits=\"degrees\"><vel ang=\"180\"/>"
+                        "<axisp1 x=\"0\" y=\"0\" z=\"0\"/><axisp2 x=\"0\" y=\"1\" z=\"0\"/></mvrot></objreal></motion>";
+    vres_store *s = rd(mkcase("", DEF2D, cmd, extra, ""));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_uint_eq(s->nbodies, 2);
+    const vres_body *f = &s->body[0], *m = &s->body[1];
+    ck_assert_int_eq(f->kind, VRES_FLOATING);
+    NEAR(f->mass, 9 * 5.0, 1e-12);
+    NEAR(f->center[0], 1.5, 1e-12);
+    NEAR(f->center[2], 0.2, 1e-12);
+    /* about y: 6 particles at |dx|=0.1 and 6 at |dz|=0.1 (dx, dz in {-0.1,0,0.1}): 12*5*0.01 */
+    NEAR(f->inertia[4], 12 * 5.0 * 0.01, 1e-12);
+    NEAR(f->vel[0], 1, 0);
+    ck_assert_uint_eq(vres_domain_count(&s->dom[0], VRES_FLOATING), 9);
+    ck_assert_int_eq(m->kind, VRES_MOVING);
+    ck_assert_uint_eq(vres_domain_count(&s->dom[0], VRES_MOVING), 3);
+    ck_assert_uint_eq(m->nseg, 2);
+    ck_assert_int_eq(m->mv_first, 1);
+    NEAR(m->mv_start, 0.1, 0);
+    ck_assert_int_eq(m->seg[0].next, 2);
+    NEAR(m->seg[1].angvel, M_PI, 1e-12);
+    ck_assert(m->seg[1].duration < 0);
+    /* order: fixed walls (none), moving, floating, fluid */
+    ck_assert_int_eq(s->dom[0].type[0], VRES_MOVING);
+    ck_assert_int_eq(s->dom[0].type[3], VRES_FLOATING);
+    for (size_t i = 0; i < s->dom[0].n; i++)
+        if (s->dom[0].type[i] == VRES_FLOATING) {
+            NEAR(s->dom[0].mass_p[i], 5.0, 1e-12);
+            NEAR(s->dom[0].vel[3 * i], 1.0, 0);
+        }
+    vres_store_free(s);
+    /* a nested <obj> and a body with no particles are errors */
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, cmd, "<motion><obj><begin mov=\"1\"/></obj></motion>", "")));
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, cmd, "<floatings><floating mkbound=\"7\" rhopbody=\"1\"/></floatings>", "")));
+}
+END_TEST
+
+/* <normals>, <initials> and comments: normals refused unless inactive; '_' elements skipped. */
+START_TEST(skips_and_refusals)
+{
+    vres_store *s = rd(mkcase("<!-- comment --><_rhop0 value=\"-5\"/>", DEF2D, "<_drawsphere/>" WATER,
+                              "<normals active=\"false\"><norplane/></normals>", ""));
+    ck_assert_ptr_nonnull(s);
+    vres_store_free(s);
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "<normals><norplane/></normals>", "")));
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "<initials/>", "")));
+}
+END_TEST
+
+/* Gauges and inlet/outlet zones are kept as XML text, their #expressions evaluated. */
+START_TEST(special_kept)
+{
+    vres_store *s = rd(mkcase("", DEF2D, WATER, "",
+                              "<special><gauges><swl name=\"g\"><point0 x=\"#Dp*3\" y=\"0\" z=\"0\"/></swl></gauges>"
+                              "<inout><inoutzone/></inout></special>"));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_ptr_nonnull(strstr(s->gauges_xml, "<swl name=\"g\">"));
+    ck_assert_ptr_nonnull(strstr(s->gauges_xml, "x=\"0.30000000000000004\"")); /* #Dp*3 evaluated */
+    ck_assert_ptr_nonnull(strstr(s->inout_xml, "<inoutzone/>"));
+    vres_store_free(s);
+    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "", "<special><shifting/></special>")));
+}
+END_TEST
+
+/* All the case's tests. */
+static Suite *suite(void)
+{
+    Suite *su = suite_create("casedef");
+    TCase *t = tcase_create("casedef");
+    tcase_set_timeout(t, 30);
+    tcase_add_test(t, constants_auto_2d);
+    tcase_add_test(t, constants_hdp_and_explicit);
+    tcase_add_test(t, constants_3d);
+    tcase_add_test(t, constants_errors);
+    tcase_add_test(t, geometry_errors);
+    tcase_add_test(t, variables_and_overrides);
+    tcase_add_test(t, particle_order);
+    tcase_add_test(t, initial_density);
+    tcase_add_test(t, parameters_defaults);
+    tcase_add_test(t, parameters_notes_and_errors);
+    tcase_add_test(t, parameters_periodic);
+    tcase_add_test(t, domain_forms);
+    tcase_add_test(t, domain_in_case);
+    tcase_add_test(t, vres_boxes);
+    tcase_add_test(t, check_buffers);
+    tcase_add_test(t, check_normals);
+    tcase_add_test(t, check_domain);
+    tcase_add_test(t, bodies);
+    tcase_add_test(t, skips_and_refusals);
+    tcase_add_test(t, special_kept);
+    suite_add_tcase(su, t);
+    return su;
+}
+
+/* Run the suite quietly; the exit status says whether every test passed. */
+int main(void)
+{
+    vres_progname = "test_casedef";
+    vres_verbosity = -1; /* only the errors the cases provoke on purpose */
+    SRunner *sr = srunner_create(suite());
+    srunner_run_all(sr, CK_NORMAL);
+    int failed = srunner_ntests_failed(sr);
+    srunner_free(sr);
+    return failed != 0;
+}

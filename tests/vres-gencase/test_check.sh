@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# vres-gencase --check: the pre-flight checks, writing nothing. The dam break is clean; a
+# refinement box with buffsizeh 1.5 has a buffer narrower than the kernel support 2h and is
+# named by its index and line; fluid left outside a cut simulation domain is reported.
+source "$(dirname "$0")/../harness.sh"
+CASE=$CASES/dsph_dambreak2d/dambreak2d_Def.xml
+mkdir "$T/out"
+
+expect 0 "the dam break passes --check" "$BIN/vres-gencase" --check "$CASE"
+check "--check writes nothing on stdout" [ ! -s "$OUT" ]
+
+# a buffer box 1.5 h wide, in a <vres> block inserted after </geometry> (the case is Symplectic)
+sed -e 's|</geometry>|</geometry>\n        <vres>\n            <bufferbox>\n                <point x="0.2" y="0" z="0.2" />\n                <size x="0.5" y="0" z="1" />\n                <dpratio v="2" />\n                <buffsizeh v="1.5" />\n            </bufferbox>\n        </vres>|' \
+    "$CASE" >"$T/narrow.xml"
+line=$(grep -n "<bufferbox>" "$T/narrow.xml" | cut -d: -f1)
+expect_err 1 "bufferbox 1 \(line $line\): buffsizeh=1.5 .*narrower than the kernel support 2h" \
+    "--check names the narrow buffer" "$ASAN/vres-gencase" --check "$T/narrow.xml" -o "$T/out/x.h5"
+check "one line per problem" [ "$(grep -c "bufferbox" "$ERR")" -eq 1 ]
+nothing_in "$T/out" "--check writes no store"
+expect 0 "the same case generates without --check" "$BIN/vres-gencase" -q "$T/narrow.xml" -o "$T/out/n.h5"
+
+# simulation domain cut at x = 0.5: half the water column lies outside it
+sed 's|<posmax x="default"|<posmax x="0.5"|' "$CASE" >"$T/cut.xml"
+expect_err 1 "fluid particles lie outside the simulation domain" "--check finds fluid outside the domain" \
+    "$ASAN/vres-gencase" --check "$T/cut.xml"
