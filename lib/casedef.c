@@ -864,6 +864,7 @@ static void keep_source(cd_ctx *c, vres_store *s, const char *xml, size_t len, c
     base = base ? base + 1 : c->src;
     size_t n = strlen(base);
     if (n > 4 && !strcasecmp(base + n - 4, ".xml")) n -= 4;
+    if (n > 4 && !strncmp(base + n - 4, "_Def", 4)) n -= 4; /* DualSPHysics names CaseX_Def.xml's case CaseX */
     s->name = vres_xasprintf("%.*s", (int)n, base);
     int nov = o ? o->noverrides : 0;
     s->overrides = vres_xcalloc((unsigned long)nov + 2, sizeof *s->overrides);
