@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "canvas.h"
+#include "check_run.h"
 
 /* ---------------------------------------------------------------- helpers */
 
@@ -820,9 +821,5 @@ int main(void)
     tcase_add_test(tc, emit_order_positions);
     tcase_add_test(tc, bad_input);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failures = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failures != 0;
+    return vres_check_run(s);
 }

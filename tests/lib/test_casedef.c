@@ -15,6 +15,7 @@
 #include "eos.h"
 #include "log.h"
 #include "store.h"
+#include "check_run.h"
 
 /* Default geometry: 2D (y extent zero), dp 0.1, domain -1..2 in x and z. */
 #define DEF2D                                                                                      \
@@ -573,9 +574,5 @@ int main(void)
 {
     vres_progname = "test_casedef";
     vres_verbosity = -1; /* only the errors the cases provoke on purpose */
-    SRunner *sr = srunner_create(suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed != 0;
+    return vres_check_run(suite());
 }

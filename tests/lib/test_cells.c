@@ -12,6 +12,7 @@
 
 #include "cells.h"
 #include "store.h"
+#include "check_run.h"
 
 /* Uniform pseudo-random number in [a, b) from a private LCG (reproducible, thread-free). */
 static double urand(uint64_t *s, double a, double b)
@@ -403,9 +404,5 @@ int main(void)
     tcase_add_test(tc, bbox);
     tcase_add_test(tc, million_particles_3d);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int nf = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return nf != 0;
+    return vres_check_run(s);
 }

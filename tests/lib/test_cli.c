@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "log.h"
+#include "check_run.h"
 
 static const vres_opt opts[] = {
     {"dp", 0, VRES_ARG_POSDOUBLE, 0},
@@ -145,9 +146,5 @@ int main(void)
     tcase_add_exit_test(tc, help_exits_zero, 0);
     tcase_add_test(tc, all_errors_reported);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int nf = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return nf != 0;
+    return vres_check_run(s);
 }

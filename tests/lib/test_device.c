@@ -7,6 +7,7 @@
 
 #include "device.h"
 #include "../kernels/eos.h"
+#include "check_run.h"
 
 START_TEST(tait_inverse_round_trip)
 {
@@ -58,9 +59,5 @@ int main(void)
     tcase_add_test(tc, eos_loop_matches_formula);
     tcase_add_test(tc, device_choice_without_gpu);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int nf = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return nf != 0;
+    return vres_check_run(s);
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "expr.h"
+#include "check_run.h"
 
 #define PI 3.14159265358979323846
 #define TOL 1e-15 /* a few ulps of values near 1: the C library's own accuracy */
@@ -539,9 +540,5 @@ int main(void)
     tcase_add_test(tc, delete_wildcards);
     tcase_add_test(tc, wavelength);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failures = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failures != 0;
+    return vres_check_run(s);
 }

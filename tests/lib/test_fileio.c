@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "fileio.h"
+#include "check_run.h"
 
 static char dir[64];
 
@@ -122,9 +123,5 @@ int main(void)
     tcase_add_test(tc, read_missing_file_fails);
     tcase_add_test(tc, mkdirs_nested);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int nf = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return nf != 0;
+    return vres_check_run(s);
 }

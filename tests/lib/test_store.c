@@ -18,6 +18,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "check_run.h"
 
 /* Particles in the sample's root domain: more than one chunk (32768 rows) so that chunked
  * reading across chunk boundaries is exercised. */
@@ -799,9 +800,5 @@ int main(void)
     tcase_add_test(tc, test_bad_files);
     tcase_add_test(tc, test_inconsistent);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed != 0;
+    return vres_check_run(s);
 }

@@ -17,6 +17,7 @@
 
 #include "store.h"
 #include "vtkio.h"
+#include "check_run.h"
 
 static char dir[64];
 
@@ -358,9 +359,5 @@ int main(void)
     tcase_add_test(tc, failures_leave_nothing);
     tcase_add_test(tc, reader_rejects_bad_files);
     suite_add_tcase(su, tc);
-    SRunner *sr = srunner_create(su);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed != 0;
+    return vres_check_run(su);
 }

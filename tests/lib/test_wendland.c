@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "../kernels/wendland.h"
+#include "check_run.h"
 
 static const double PI = VRES_WENDLAND_PI;
 
@@ -183,9 +184,5 @@ int main(void)
     tcase_add_test(tc, derivative_matches_finite_differences);
     tcase_add_test(tc, lattice_sum);
     suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int nf = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return nf != 0;
+    return vres_check_run(s);
 }
