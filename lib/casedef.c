@@ -56,6 +56,7 @@ void cd_err(cd_ctx *c, xmlNodePtr node, const char *fmt, ...)
 
 void cd_note(cd_ctx *c, xmlNodePtr node, const char *fmt, ...)
 {
+    if (c->nerr) return; /* after an error nothing is written: notes would only bury the error */
     va_list ap;
     va_start(ap, fmt);
     char *m = vfmt(fmt, ap);
