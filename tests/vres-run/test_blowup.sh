@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# vres-run stops a run that goes bad with exit 3, one diagnosis line (which particle, where,
+# which quantity and value, step and time) and a readable snap_last_good.h5 holding the state
+# before it. Two ways to go bad: a density limit the dam break crosses at once (RhopOutMax
+# 1003 kg/m^3, just above the column's initial hydrostatic 1002.5), and a DtMin above any dt.
+source "$(dirname "$0")/../harness.sh"
+RUN=$BIN/vres-run
+DB=$CASES/dsph_dambreak2d/dambreak2d_Def.xml
+
+values() { h5dump -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
+
+"$BIN/vres-gencase" -q --dp 0.04 --set RhopOutMax=1003 "$DB" -o "$T/db.h5" || notok "gencase the dam break"
+expect_err 3 'unstable at step [0-9]+, t = [0-9.e-]+ s: fluid particle id [0-9]+ at \([-0-9.e]+, 0, [-0-9.e]+\) m: density [0-9.]+ kg/m\^3 outside RhopOutMin\.\.RhopOutMax = 700\.\.1003' \
+    "density above RhopOutMax: exit 3 and the diagnosis" "$RUN" --tout 0.05 "$T/db.h5" -o "$T/run"
+cp "$ERR" "$T/diag"
+check "names the last good state" grep -q -E 'last good state \(step [0-9]+, t = [0-9.e-]+ s\) written to .*/snap_last_good\.h5' "$ERR"
+check "snap_last_good.h5 exists" [ -f "$T/run/snap_last_good.h5" ]
+expect 0 "vres-info reads snap_last_good.h5" "$BIN/vres-info" "$T/run/snap_last_good.h5"
+# the step vres-info reports is the one before the bad step named in the diagnosis
+bad=$(grep -o -E 'unstable at step [0-9]+' "$T/diag" | grep -o -E '[0-9]+$')
+good=$(grep -o -E 'time +[0-9.e-]+ s, step [0-9]+' "$OUT" | grep -o -E '[0-9]+$')
+check "last good step $good is bad step $bad - 1" [ "$good" -eq $((bad - 1)) ]
+# in the last good state every fluid density lies within the limits
+rmax=$(paste <(values /Domains/D0/Type "$T/run/snap_last_good.h5") <(values /Domains/D0/Density "$T/run/snap_last_good.h5") |
+       awk '$1 == 0 && $2 > m {m = $2} END {print m}')
+check "last good fluid densities <= 1003 (max $rmax)" awk -v r="$rmax" 'BEGIN {exit !(r <= 1003)}'
+check "snap 0 and run.tsv written before the stop" [ -f "$T/run/snap_00000.h5" ] && grep -q '^0	0	' "$T/run/run.tsv"
+
+# a DtMin no step can meet: stopped before the first step, the initial state kept
+"$BIN/vres-gencase" -q --dp 0.04 --set DtMin=1 "$DB" -o "$T/dt.h5" || notok "gencase with DtMin 1"
+expect_err 3 'unstable at step 1, t = 0 s: time step [0-9.e-]+ s below DtMin 1 s' "dt below DtMin: exit 3" \
+    "$RUN" --tout 0.05 "$T/dt.h5" -o "$T/run2"
+expect 0 "its snap_last_good.h5 is readable" "$BIN/vres-info" "$T/run2/snap_last_good.h5"
+check "and holds step 0" grep -q -E 'time +0 s, step 0$' "$OUT"

@@ -1,0 +1,54 @@
+/* vres-run - integrate a store in time (weakly compressible SPH, single domain, CPU with
+ * OpenMP) and write a run directory of snapshots and a run.tsv log. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "log.h"
+#include "solver.h"
+#include "store.h"
+
+static const char synopsis[] =
+    "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] STORE -o RUNDIR\n";
+
+static const vres_opt options[] = {
+    {"tmax", 0, VRES_ARG_POSDOUBLE, 0}, /* end time (s) instead of the store's TimeMax */
+    {"tout", 0, VRES_ARG_POSDOUBLE, 0}, /* time between snapshots (s) instead of TimeOut */
+    {"device", 0, VRES_ARG_STR, 0},     /* auto, cpu or cuda */
+    {"threads", 0, VRES_ARG_INT, 0},    /* OpenMP threads */
+    {NULL, 0, VRES_ARG_NONE, 0},
+};
+
+/* Check the options the parser cannot (required -o, device name, thread count); exit 2 on a
+ * usage error, like the parser. */
+static void check_usage(const vres_cli *cli)
+{
+    int bad = 0;
+    const char *dev = vres_cli_get(cli, "device");
+    if (!cli->output) vres_error("missing -o RUNDIR: the run directory to write"), bad = 1;
+    if (dev && strcmp(dev, "auto") && strcmp(dev, "cpu") && strcmp(dev, "cuda"))
+        vres_error("--device %s: must be auto, cpu or cuda", dev), bad = 1;
+    const char *th = vres_cli_get(cli, "threads");
+    if (th && atoi(th) < 1) vres_error("--threads %s: must be at least 1", th), bad = 1;
+    if (bad) {
+        vres_error("Try '%s --help'.", cli->tool);
+        exit(2);
+    }
+}
+
+/* Parse the command line, read the store, run it. */
+int main(int argc, char **argv)
+{
+    vres_cli cli;
+    vres_cli_parse(&cli, argc, argv, "vres-run", synopsis, options, 1, 1);
+    check_usage(&cli);
+    vres_run_opts o = {vres_cli_double(&cli, "tmax", 0), vres_cli_double(&cli, "tout", 0),
+                       vres_cli_get(&cli, "device"), vres_cli_get(&cli, "threads") ? atoi(vres_cli_get(&cli, "threads")) : 0,
+                       cli.output, cli.cmdline};
+    vres_store *s = vres_store_read(cli.pos[0]);
+    int rc = s ? vres_solver_run(s, &o) : VRES_RUN_FAIL;
+    vres_store_free(s);
+    vres_cli_free(&cli);
+    return rc;
+}
