@@ -1,6 +1,7 @@
 # vres - variable-resolution SPH toolkit.
 #   make            build libvres and every tool into bin/ (CUDA parts too where nvcc exists)
 #   make check      build, then run the whole test suite (unit + tool behaviour + ASan readers)
+#   make bench      throughput table of vres-run (pipelines/bench.sh)
 #   make demo       generate the shipped cases and export them to VTK under demo/
 #   make install PREFIX=/usr/local
 # Sources are found by wildcard: lib/*.c|*.cc|*.cu -> libvres, tools/vres-*.c -> bin/vres-*,
@@ -96,6 +97,10 @@ asan: $(ASAN_TOOLS)
 check: all asan $(TESTS)
 	VRES_BUILD=$(B) bash tests/run
 
+# Throughput table of vres-run (not a test; see pipelines/bench.sh).
+bench: all
+	bash pipelines/bench.sh
+
 demo: all
 	$(MAKE) -f pipelines/demo.mk
 
@@ -110,6 +115,6 @@ install: all
 clean:
 	rm -rf $(B) bin demo
 
-.PHONY: all asan check demo install clean
+.PHONY: all asan check bench demo install clean
 .SECONDARY: $(ASAN_OBJ) $(LIB_OBJ)
 .DELETE_ON_ERROR:
