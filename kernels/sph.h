@@ -5,7 +5,7 @@
  *   momentum    dv_a/dt   = -sum_b m_b ((p_a + p_b)/(rho_a rho_b) + Pi_ab) grad_a W_ab + g
  *
  * with x_ab = x_a - x_b, v_ab = v_a - v_b, grad_a W_ab = F(r) x_ab (wendland.h), Monaghan's
- * artificial viscosity Pi_ab and walls as DBC (dynamic boundary particles: they carry density
+ * artificial viscosity Pi_ab or laminar viscosity (Lo & Shao 2002, as DualSPHysics) and walls as DBC (dynamic boundary particles: they carry density
  * from the continuity equation over their fluid neighbours, their pressure comes from the EOS,
  * and they do not move). Time integration is DualSPHysics' Symplectic predictor-corrector.
  *
@@ -41,6 +41,10 @@
 #define VRES_DDT_MOLTENI 1   /* Molteni & Colagrossi (2009) */
 #define VRES_DDT_FOURTAKAS 2 /* Fourtakas et al. (2019): hydrostatic part removed, fluid-fluid only */
 
+/* Viscosity variants (parameter ViscoTreatment). */
+#define VRES_VISC_ARTIFICIAL 1 /* Monaghan's artificial viscosity, alpha = Visco */
+#define VRES_VISC_LAMINAR 3    /* laminar viscosity (Lo & Shao 2002), nu = Visco (m^2/s) */
+
 /* Constants of one domain's interaction, computed once per run (passed by value). */
 typedef struct vres_sph_consts {
     vres_wendland k;    /* kernel constants (h, normalisation) */
@@ -55,6 +59,10 @@ typedef struct vres_sph_consts {
     double rho0_over_B; /* rho0 / B for Fourtakas' hydrostatic density (s^2/m^2) */
     double inv_gamma;   /* 1 / gamma of the Tait EOS */
     double g[3];        /* gravity (m/s^2) */
+    double nu;          /* laminar kinematic viscosity between fluid particles (m^2/s; Visco) */
+    double nu_wall;     /* the same for fluid-wall pairs (Visco * ViscoBoundFactor) (m^2/s) */
+    int shift_mode;     /* Shifting 1: a wall neighbour cancels a particle's shifting, 2: a fixed
+                           one does, 3: walls count like fluid (used by the shifting variants only) */
 } vres_sph_consts;
 
 /* Pressure force of b on a, added to acc (m/s^2): -m_b (p_a + p_b)/(rho_a rho_b) F x_ab.
@@ -89,6 +97,24 @@ VRES_HD static inline double vres_sph_pair_visc(const vres_sph_consts *C, double
     return dot_rr2;
 }
 
+/* Laminar viscosity of b on a, added to acc (m/s^2), in DualSPHysics' form of Lo & Shao (2002):
+ *   m_b 4 nu (x_ab . grad_a W_ab) / ((rho_a + rho_b)(r^2 + eta2)) v_ab,
+ * for every pair in the support (approaching or not); x_ab . grad_a W_ab = F r^2 < 0, so it
+ * brakes the relative velocity. nu m^2/s, mb kg, rhoa rhob kg/m^3, inv_r2eta 1/(r^2 + eta2)
+ * (m^-2). Symmetric in a, b: m_a acc_a = -m_b acc_b. Returns x_ab.v_ab / (r^2 + eta2) (1/s)
+ * for the time step, as vres_sph_pair_visc. */
+VRES_HD static inline double vres_sph_pair_laminar(double nu, double mb, double rhoa, double rhob, const double dx[3],
+                                                   const double dv[3], double inv_r2eta, const double fr[3],
+                                                   double acc[3])
+{
+    double xf = dx[0] * fr[0] + dx[1] * fr[1] + dx[2] * fr[2];
+    double vt = mb * 4.0 * nu * xf * inv_r2eta / (rhoa + rhob);
+    acc[0] += vt * dv[0];
+    acc[1] += vt * dv[1];
+    acc[2] += vt * dv[2];
+    return (dx[0] * dv[0] + dx[1] * dv[1] + dx[2] * dv[2]) * inv_r2eta;
+}
+
 /* Density diffusion of b on a (kg/m^3/s), delta-SPH in DualSPHysics' form:
  *   2 delta h c0 ((rho_a - rho_b) + rho^H_ab) F r^2/(r^2 + eta2) m_b/rho_b,
  * which lowers the denser of two particles (F < 0). Molteni (fourtakas = 0): rho^H_ab = 0.
@@ -116,17 +142,24 @@ VRES_HD static inline double vres_sph_pair_ddt(const vres_sph_consts *C, int fou
  * largest viscous rate visc[a] (1/s); for a wall particle (DBC) ar[a] from its fluid
  * neighbours only, ace zero. Positions, velocities, densities, pressures, masses and types
  * are the domain's arrays in cell order (slot s of g is particle s). ddt is a VRES_DDT_*
- * kind, walls 1 when the domain has wall particles; the variants below fix both. */
+ * kind, walls 1 when the domain has wall particles, visc a VRES_VISC_* kind; the variants
+ * below fix all three. shift 1 (the shifting variants) also sums, for each fluid particle, the
+ * concentration gradient grad C = sum_b V_b grad_a W_ab (1/m) and the position divergence
+ * div r = -sum_b V_b x_ab . grad_a W_ab (dim inside the fluid, less near a free surface) into
+ * shiftv[4a..4a+3], V_b = m_b/rho_b; NaN in shiftv[4a] when a wall neighbour cancels the
+ * particle's shifting (C.shift_mode 1 or 2, as DualSPHysics). */
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vres_cells *g, const double *pos, const float *vel,
                                              const float *rho, const float *press, const double *mass,
                                              const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
-                                             double *visc, const int ddt, const int walls)
+                                             double *visc, const int ddt, const int walls, const int viscosity,
+                                             const int shift, double *shiftv)
 {
     const int fluid_a = !walls || type[a] == 0; /* 0: VRES_FLUID (store.h) */
     const double xa[3] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
     const double va[3] = {vel[3 * a], vel[3 * a + 1], vel[3 * a + 2]};
     const double rhoa = rho[a], inv_rhoa = 1.0 / rhoa, pa = press[a];
-    double acc[3] = {0, 0, 0}, arp = 0, vmax = 0, diff = 0;
+    double acc[3] = {0, 0, 0}, arp = 0, vmax = 0, diff = 0, gc[3] = {0, 0, 0}, divr = 0;
+    int noshift = 0;
     vres_cell_range nb[27];
     int m = vres_cells_neighbours(g, xa, nb);
     for (int c = 0; c < m; c++)
@@ -149,12 +182,28 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
             }
             double inv_rhob = 1.0 / rhob;
             vres_sph_pair_pressure(mb, pa, press[b], inv_rhoa, inv_rhob, fr, acc);
-            double rate = vres_sph_pair_visc(&C, wall_b ? C.alpha_wall : C.alpha, mb, rhoa, rhob, dx, dv, inv_r2eta,
-                                             fr, acc);
+            double rate = viscosity == VRES_VISC_LAMINAR
+                              ? vres_sph_pair_laminar(wall_b ? C.nu_wall : C.nu, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc)
+                              : vres_sph_pair_visc(&C, wall_b ? C.alpha_wall : C.alpha, mb, rhoa, rhob, dx, dv,
+                                                   inv_r2eta, fr, acc);
             vmax = rate > vmax ? rate : vmax;
             if (ddt != VRES_DDT_NONE && !wall_b)
                 diff += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob, dx, r2, inv_r2eta, F);
+            if (shift) {
+                double vol = mb * inv_rhob;
+                if (wall_b && (C.shift_mode == 1 || (C.shift_mode == 2 && type[b] == 2))) noshift = 1; /* 2: VRES_FIXED */
+                gc[0] += vol * fr[0];
+                gc[1] += vol * fr[1];
+                gc[2] += vol * fr[2];
+                divr -= vol * (dx[0] * fr[0] + dx[1] * fr[1] + dx[2] * fr[2]);
+            }
         }
+    if (shift && fluid_a) {
+        shiftv[4 * a] = noshift ? NAN : gc[0];
+        shiftv[4 * a + 1] = gc[1];
+        shiftv[4 * a + 2] = gc[2];
+        shiftv[4 * a + 3] = divr;
+    }
     ar[a] = arp + diff;
     visc[a] = vmax;
     ace[3 * a] = fluid_a ? acc[0] + C.g[0] : 0.0;
@@ -203,6 +252,38 @@ VRES_HD static inline void vres_sph_correct_one(size_t i, const uint8_t *type, c
     }
 }
 
+/* One Verlet step dt (s) of particle i (DualSPHysics' ComputeVerletVarsFluid): the position
+ * advances by v dt + a dt^2/2 from the current velocity; velocity and density by the leapfrog
+ * v^(n+1) = v^(n-1) + 2 dt a^n from the previous step's values velm1, rhom1, or, on an Euler
+ * step (euler 1, every VerletSteps steps, which keeps the two interleaved sequences together),
+ * by v^(n+1) = v^n + dt a^n. The current values then become the previous ones. Walls only
+ * update their density, kept >= rhop0. */
+VRES_HD static inline void vres_sph_verlet_one(size_t i, const uint8_t *type, double *pos, float *vel, float *rho,
+                                               float *velm1, float *rhom1, const double *ace, const double *ar,
+                                               double dt, int euler, double rhop0)
+{
+    double dt2 = euler ? dt : 2.0 * dt;
+    double r = (euler ? rho[i] : rhom1[i]) + dt2 * ar[i];
+    rhom1[i] = rho[i];
+    if (type[i] != 0) {
+        rho[i] = (float)(r < rhop0 ? rhop0 : r);
+        return;
+    }
+    rho[i] = (float)r;
+    for (int k = 0; k < 3; k++) {
+        double v = vel[3 * i + k], a = ace[3 * i + k];
+        pos[3 * i + k] += v * dt + 0.5 * a * dt * dt;
+        vel[3 * i + k] = (float)((euler ? v : velm1[3 * i + k]) + dt2 * a);
+        velm1[3 * i + k] = (float)v;
+    }
+}
+
+/* vres_sph_verlet_cpu / _cuda (n, type, pos, vel, rho, velm1, rhom1, ace, ar, dt, euler, rhop0). */
+VRES_PARTICLE_LOOP(vres_sph_verlet, vres_sph_verlet_one,
+                   (const uint8_t *type, double *pos, float *vel, float *rho, float *velm1, float *rhom1,
+                    const double *ace, const double *ar, double dt, int euler, double rhop0),
+                   (type, pos, vel, rho, velm1, rhom1, ace, ar, dt, euler, rhop0))
+
 /* vres_sph_predict_cpu / _cuda and vres_sph_correct_cpu / _cuda (n, type, pos0, ...). */
 VRES_PARTICLE_LOOP(vres_sph_predict, vres_sph_predict_one,
                    (const uint8_t *type, const double *pos0, const float *vel0, const float *rho0, const double *ace,
@@ -213,15 +294,15 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
                     const double *ar, double *pos, float *vel, float *rho, double dt, double rhop0),
                    (type, pos0, vel0, rho0, ace, ar, pos, vel, rho, dt, rhop0))
 
-/* The interaction variants: VRES_SPH_VARIANT(name, ddt, walls) defines name_one with the
+/* The interaction variants: VRES_SPH_VARIANT(name, ddt, walls, visc) defines name_one with the
  * options fixed (the compiler drops the unused branches) and its loops name_cpu / name_cuda. */
-#define VRES_SPH_VARIANT(name, ddt, walls)                                                                       \
+#define VRES_SPH_VARIANT(name, ddt, walls, viscosity)                                                            \
     VRES_HD static inline void name##_one(size_t a, const vres_cells *g, const double *pos, const float *vel,    \
                                           const float *rho, const float *press, const double *mass,              \
                                           const uint8_t *type, vres_sph_consts C, double *ace, double *ar,       \
                                           double *visc)                                                          \
     {                                                                                                            \
-        vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls);                 \
+        vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, 0, NULL); \
     }                                                                                                            \
     VRES_PARTICLE_LOOP(name, name##_one,                                                                         \
                        (const vres_cells *g, const double *pos, const float *vel, const float *rho,              \
@@ -229,11 +310,73 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
                         double *ace, double *ar, double *visc),                                                  \
                        (g, pos, vel, rho, press, mass, type, C, ace, ar, visc))
 
-VRES_SPH_VARIANT(vres_sph_plain, VRES_DDT_NONE, 0)          /* no walls, no diffusion */
-VRES_SPH_VARIANT(vres_sph_molteni, VRES_DDT_MOLTENI, 0)     /* no walls, Molteni diffusion */
-VRES_SPH_VARIANT(vres_sph_fourtakas, VRES_DDT_FOURTAKAS, 0) /* no walls, Fourtakas diffusion */
-VRES_SPH_VARIANT(vres_sph_dbc, VRES_DDT_NONE, 1)            /* DBC walls, no diffusion */
-VRES_SPH_VARIANT(vres_sph_dbc_molteni, VRES_DDT_MOLTENI, 1) /* DBC walls, Molteni diffusion */
-VRES_SPH_VARIANT(vres_sph_dbc_fourtakas, VRES_DDT_FOURTAKAS, 1) /* DBC walls, Fourtakas diffusion */
+/* The six wall and diffusion variants for one viscosity kind: prefix##plain, prefix##molteni,
+ * prefix##fourtakas (no walls) and prefix##dbc, prefix##dbc_molteni, prefix##dbc_fourtakas. */
+#define VRES_SPH_VARIANTS(prefix, viscosity)                                       \
+    VRES_SPH_VARIANT(prefix##plain, VRES_DDT_NONE, 0, viscosity)                   \
+    VRES_SPH_VARIANT(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity)              \
+    VRES_SPH_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity)          \
+    VRES_SPH_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity)                     \
+    VRES_SPH_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity)          \
+    VRES_SPH_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)
+
+/* The same with shifting sums: VRES_SPH_SHIFT_VARIANT(name, ddt, walls, visc) defines name_cpu /
+ * name_cuda taking shiftv [4n] after visc. */
+#define VRES_SPH_SHIFT_VARIANT(name, ddt, walls, viscosity)                                                      \
+    VRES_HD static inline void name##_one(size_t a, const vres_cells *g, const double *pos, const float *vel,    \
+                                          const float *rho, const float *press, const double *mass,              \
+                                          const uint8_t *type, vres_sph_consts C, double *ace, double *ar,       \
+                                          double *visc, double *shiftv)                                          \
+    {                                                                                                            \
+        vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, 1,    \
+                          shiftv);                                                                               \
+    }                                                                                                            \
+    VRES_PARTICLE_LOOP(name, name##_one,                                                                         \
+                       (const vres_cells *g, const double *pos, const float *vel, const float *rho,              \
+                        const float *press, const double *mass, const uint8_t *type, vres_sph_consts C,          \
+                        double *ace, double *ar, double *visc, double *shiftv),                                  \
+                       (g, pos, vel, rho, press, mass, type, C, ace, ar, visc, shiftv))
+
+/* The six shifting variants for one viscosity kind, named like VRES_SPH_VARIANTS'. */
+#define VRES_SPH_SHIFT_VARIANTS(prefix, viscosity)                                       \
+    VRES_SPH_SHIFT_VARIANT(prefix##plain, VRES_DDT_NONE, 0, viscosity)                   \
+    VRES_SPH_SHIFT_VARIANT(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity)              \
+    VRES_SPH_SHIFT_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity)          \
+    VRES_SPH_SHIFT_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity)                     \
+    VRES_SPH_SHIFT_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity)          \
+    VRES_SPH_SHIFT_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)
+
+VRES_SPH_VARIANTS(vres_sph_, VRES_VISC_ARTIFICIAL)        /* vres_sph_plain ... vres_sph_dbc_fourtakas */
+VRES_SPH_VARIANTS(vres_sph_laminar_, VRES_VISC_LAMINAR)   /* vres_sph_laminar_plain ... */
+VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_, VRES_VISC_ARTIFICIAL)         /* vres_sph_shift_plain ... */
+VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_laminar_, VRES_VISC_LAMINAR)    /* vres_sph_shift_laminar_plain ... */
+
+/* The shifting displacement (m) of fluid particle i for a step dt (s) at speed |v_i|, into
+ * shiftv[4i..4i+2] (DualSPHysics' JSphShifting): dr = A h |v| dt grad C, A = ShiftCoef
+ * (negative: towards lower concentration), scaled by (div r - TFS)/(dim - TFS) when TFS > 0
+ * and zero where div r < TFS (the free surface), each component kept within 0.1 dp; zero
+ * where a wall cancelled it (NaN). shiftv holds grad C and div r on entry. */
+VRES_HD static inline void vres_shift_one(size_t i, const uint8_t *type, const float *vel, double *shiftv, double dt,
+                                          double coef_h, double tfs, int dim, double maxdist)
+{
+    double *s = &shiftv[4 * i];
+    if (type[i] != 0 || s[0] != s[0]) { /* walls; NaN: cancelled */
+        s[0] = s[1] = s[2] = 0;
+        return;
+    }
+    const float *v = &vel[3 * i];
+    double u = coef_h * dt * sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]);
+    if (tfs > 0) u = s[3] < tfs ? 0.0 : u * (s[3] - tfs) / (dim - tfs);
+    for (int k = 0; k < 3; k++) {
+        double d = s[k] * u;
+        s[k] = d > maxdist ? maxdist : d < -maxdist ? -maxdist : d;
+    }
+}
+
+/* vres_shift_cpu / vres_shift_cuda (n, type, vel, shiftv, dt, coef_h, tfs, dim, maxdist). */
+VRES_PARTICLE_LOOP(vres_shift, vres_shift_one,
+                   (const uint8_t *type, const float *vel, double *shiftv, double dt, double coef_h, double tfs,
+                    int dim, double maxdist),
+                   (type, vel, shiftv, dt, coef_h, tfs, dim, maxdist))
 
 #endif

@@ -1,7 +1,10 @@
 /* solver.c - single-domain WCSPH runs on the CPU (see solver.h): checking what the store asks
- * for, the Symplectic step over the cell-sorted particles, stability checks and output. */
+ * for, the Symplectic or Verlet step over the cell-sorted particles (with periodic wrapping,
+ * moving walls, mDBC and shifting when the scene has them), stability checks and output.
+ * Prescribed motions are in solver_motion.c, per-particle physics in kernels/. */
 #include "solver.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
@@ -13,11 +16,13 @@
 #include <unistd.h>
 
 #include "../kernels/eos.h"
+#include "../kernels/mdbc.h"
 #include "../kernels/sph.h"
 #include "cells.h"
 #include "device.h"
 #include "fileio.h"
 #include "log.h"
+#include "solver_motion.h"
 
 /* The resolved run configuration: every parameter the solver uses, checked once. */
 typedef struct run_cfg {
@@ -28,8 +33,9 @@ typedef struct run_cfg {
     double B;             /* Tait stiffness (Pa) */
     double cs0;           /* reference speed of sound (m/s) */
     double cfl;           /* CFL number of the variable time step, in (0, 1] */
-    double visco;         /* artificial viscosity alpha */
-    double visco_bound;   /* ViscoBoundFactor: multiplies alpha for fluid-wall pairs */
+    int visco_kind;       /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment) */
+    double visco;         /* Visco: artificial viscosity alpha, or laminar kinematic viscosity (m^2/s) */
+    double visco_bound;   /* ViscoBoundFactor: multiplies Visco for fluid-wall pairs */
     int ddt;              /* VRES_DDT_* density diffusion kind */
     double ddt_delta;     /* its coefficient delta */
     double g[3];          /* gravity (m/s^2) */
@@ -38,8 +44,19 @@ typedef struct run_cfg {
     double dtmin;         /* time steps below this (s) stop the run as unstable */
     double rhop_min;      /* fluid density below this (kg/m^3) is a blow-up (when < rhop_max) */
     double rhop_max;      /* fluid density above this (kg/m^3) is a blow-up */
+    int periodic[3];      /* 1 on the axes that wrap (parameter periodic) */
+    double box_lo[3];     /* lower corner of the cells' box (m): the simulation domain, widened on periodic axes */
+    double box_hi[3];     /* its upper corner (m); on a periodic axis hi - lo is the period */
     size_t nfluid;        /* fluid particles */
-    size_t nwall;         /* fixed wall particles (DBC) */
+    size_t nwall;         /* wall particles (DBC), fixed and moving */
+    size_t nmoving;       /* of those, the walls with a prescribed motion */
+    int mdbc;             /* 1 for mDBC walls (Boundary=2), 0 for DBC */
+    int verlet;           /* 1 for Verlet (StepAlgorithm=1), 0 for Symplectic */
+    int verlet_steps;     /* VerletSteps: every this many steps one is an Euler step */
+    int shift;            /* Shifting: 0 none, 1 not near walls, 2 not near fixed walls, 3 everywhere */
+    double shift_coef;    /* ShiftCoef A of dr = A h |v| dt grad C (negative) */
+    double shift_tfs;     /* ShiftTFS: div r below this marks the free surface (0: no detection) */
+    size_t nnormal;       /* wall particles with a normal (those mDBC corrects) */
     int threads;          /* OpenMP threads used */
 } run_cfg;
 
@@ -52,7 +69,19 @@ typedef struct run_work {
     double *ace;          /* [3n] accelerations (m/s^2) */
     double *ar;           /* [n] density rates (kg/m^3/s) */
     double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
+    double *posref;       /* [3n] positions at the run's start (m), for the moving walls; NULL without them */
+    float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
+    float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
+    double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
+    double t_start;       /* time of posref (s) */
+    vres_motion_state *mv0; /* [nbodies] each body's motion at t_start, NULL without moving walls */
+    vres_motion_state *mv;  /* [nbodies] work: the motion from t_start to the time asked */
 } run_work;
+
+/* One interaction loop variant with the shifting sums (kernels/sph.h). */
+typedef void (*interact_shift_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
+                                  const float *rho, const float *press, const double *mass, const uint8_t *type,
+                                  vres_sph_consts C, double *ace, double *ar, double *visc, double *shiftv);
 
 /* One interaction loop variant (kernels/sph.h), chosen once per run. */
 typedef void (*interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel, const float *rho,
@@ -98,6 +127,69 @@ static void not_impl(int *bad, const char *name, double v, const char *what, con
     *bad = 1;
 }
 
+/* The periodic axes and the cells' box into c. An axis is periodic by the store's parameter
+ * periodic; its period is the simulation domain's length along it plus dp when that domain is
+ * the particles' extent (origin auto: the lattice then repeats with its spacing across the
+ * boundary, as DualSPHysics' map limits with periodic axes), and the domain's length when the
+ * case fixed it. Shifted periodicity (XPeriodicIncZ...) is refused. 0, or -1 after printing why. */
+static int periodic_box(const vres_store *s, run_cfg *c)
+{
+    static const char *const inc_name[3] = {"periodic_xinc", "periodic_yinc", "periodic_zinc"};
+    static const char axis[3] = {'x', 'y', 'z'};
+    const vres_param *per = vres_params_find(&s->params, "periodic");
+    const vres_param *dom = vres_params_find(&s->params, "domain_min");
+    int fixed = dom && dom->origin && strcmp(dom->origin, "auto") != 0;
+    double half = fixed ? 0 : 0.5 * s->dom[0].dp;
+    int bad = 0;
+    for (int a = 0; a < 3; a++) {
+        c->periodic[a] = per && per->n == 3 && per->v[a] != 0;
+        c->box_lo[a] = s->domain_min[a] - (c->periodic[a] ? half : 0);
+        c->box_hi[a] = s->domain_max[a] + (c->periodic[a] ? half : 0);
+        if (!c->periodic[a]) continue;
+        const vres_param *inc = vres_params_find(&s->params, inc_name[a]);
+        for (int k = 0; inc && k < inc->n && k < 3; k++)
+            if (inc->v[k] != 0)
+                vres_error("periodic along %c with an increment %g m along %c (%cPeriodicInc%c): not implemented "
+                           "yet; vres-run supports periodic boundaries without increment", axis[a], inc->v[k],
+                           axis[k], toupper(axis[a]), toupper(axis[k])), bad = 1;
+        if (!(c->box_hi[a] - c->box_lo[a] >= 2.0 * c->h))
+            vres_error("periodic along %c with a period of %g m: must be at least the kernel support 2h = %g m",
+                       axis[a], c->box_hi[a] - c->box_lo[a], 2.0 * c->h), bad = 1;
+    }
+    return bad ? -1 : 0;
+}
+
+/* The index of the moving body whose mkbound is mk, or -1. */
+static int body_of(const vres_store *s, int mk)
+{
+    for (size_t k = 0; k < s->nbodies; k++)
+        if (s->body[k].kind == VRES_MOVING && s->body[k].mkbound == mk) return (int)k;
+    return -1;
+}
+
+/* Check the bodies: moving ones with a motion vres_motion_eval can follow, each moving wall
+ * particle belonging to one; floating bodies refused. 0, or -1 after printing why. */
+static int check_bodies(const vres_store *s)
+{
+    int bad = 0;
+    for (size_t k = 0; k < s->nbodies; k++) {
+        const vres_body *b = &s->body[k];
+        if (b->kind == VRES_FLOATING)
+            vres_error("floating body mkbound %d: not implemented yet (vres-run moves walls with a prescribed "
+                       "motion only)", b->mkbound), bad = 1;
+        else if (b->kind != VRES_MOVING) vres_error("body mkbound %d of unknown kind %d", b->mkbound, b->kind), bad = 1;
+        else if (vres_motion_check(b) != 0) bad = 1;
+    }
+    const vres_domain *d = &s->dom[0];
+    for (size_t i = 0; i < d->n; i++)
+        if (d->type[i] == VRES_MOVING && body_of(s, d->mk[i]) < 0) {
+            vres_error("moving wall particle id %llu has mkbound %d, which no <motion> body moves",
+                       (unsigned long long)d->id[i], d->mk[i]);
+            return -1;
+        }
+    return bad ? -1 : 0;
+}
+
 /* Read and check every parameter of the store into c; 0, or -1 after printing each problem. */
 static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
 {
@@ -125,13 +217,14 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
     size_t count[VRES_NTYPES] = {0};
     for (size_t i = 0; i < d->n; i++) count[d->type[i] < VRES_NTYPES ? d->type[i] : VRES_BUFFER]++;
     c->nfluid = count[VRES_FLUID];
-    c->nwall = count[VRES_FIXED];
+    c->nmoving = count[VRES_MOVING];
+    c->nwall = count[VRES_FIXED] + c->nmoving;
     if (!c->nfluid) vres_error("the store has no fluid particles: nothing to run"), bad = 1;
     for (int t = 0; t < VRES_NTYPES; t++)
-        if (t != VRES_FLUID && t != VRES_FIXED && count[t])
-            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid and fixed walls)", count[t],
-                       vres_ptype_name(t)), bad = 1;
-    if (s->nbodies) vres_error("%zu moving/floating bodies: not implemented yet", s->nbodies), bad = 1;
+        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && count[t])
+            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
+                       count[t], vres_ptype_name(t)), bad = 1;
+    if (check_bodies(s) != 0) bad = 1;
     if (s->inout_xml) vres_error("inlet/outlet zones (<inout>): not implemented yet"), bad = 1;
 
     c->rho0 = need(s, "rhop0", &bad);
@@ -149,13 +242,43 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
     if (!(c->cfl > 0 && c->cfl <= 1)) vres_error("cflnumber=%g: must lie in (0, 1]", c->cfl), bad = 1;
 
     double v;
-    if ((v = vres_params_get(P, "Boundary", 1)) != 1) not_impl(&bad, "Boundary", v, v == 2 ? "mDBC" : "unknown", "1 (DBC)");
-    if ((v = vres_params_get(P, "StepAlgorithm", 2)) != 2)
-        not_impl(&bad, "StepAlgorithm", v, v == 1 ? "Verlet" : "unknown", "2 (Symplectic)");
+    v = vres_params_get(P, "Boundary", 1);
+    c->mdbc = v == 2;
+    if (v != 1 && v != 2) not_impl(&bad, "Boundary", v, "unknown", "1 (DBC), 2 (mDBC)");
+    if (c->mdbc && (v = vres_params_get(P, "SlipMode", 1)) != 1)
+        not_impl(&bad, "SlipMode", v, v == 2 ? "mDBC no-slip" : v == 3 ? "mDBC free slip" : "unknown",
+                 "1 (mDBC with the wall's own velocity)");
+    if (c->mdbc) {
+        for (size_t i = 0; i < d->n; i++)
+            if (d->type[i] != VRES_FLUID && d->normal &&
+                (d->normal[3 * i] != 0 || d->normal[3 * i + 1] != 0 || d->normal[3 * i + 2] != 0))
+                c->nnormal++;
+        if (!c->nnormal)
+            vres_warn("Boundary=2 (mDBC) but no wall particle has a normal: every wall behaves as DBC (draw the walls "
+                      "as faces with <layers> for GenCase-style normals)");
+    }
+    v = vres_params_get(P, "StepAlgorithm", 2);
+    c->verlet = v == 1;
+    if (v != 1 && v != 2) not_impl(&bad, "StepAlgorithm", v, "unknown", "1 (Verlet), 2 (Symplectic)");
+    c->verlet_steps = (int)vres_params_get(P, "VerletSteps", 40);
+    if (c->verlet && !(c->verlet_steps >= 1 && c->verlet_steps == vres_params_get(P, "VerletSteps", 40)))
+        vres_error("VerletSteps=%g: must be a whole number of steps, at least 1",
+                   vres_params_get(P, "VerletSteps", 40)), bad = 1;
     if ((v = vres_params_get(P, "Kernel", 2)) != 2) not_impl(&bad, "Kernel", v, "not Wendland", "2 (Wendland)");
-    if ((v = vres_params_get(P, "ViscoTreatment", 1)) != 1)
-        not_impl(&bad, "ViscoTreatment", v, v == 3 ? "laminar" : v == 2 ? "laminar+SPS" : "unknown", "1 (artificial)");
-    if ((v = vres_params_get(P, "Shifting", 0)) != 0) not_impl(&bad, "Shifting", v, "particle shifting", "0 (none)");
+    c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", 1);
+    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR)
+        not_impl(&bad, "ViscoTreatment", vres_params_get(P, "ViscoTreatment", 1),
+                 c->visco_kind == 2 ? "laminar+SPS" : "unknown", "1 (artificial), 3 (laminar)");
+    v = vres_params_get(P, "Shifting", 0);
+    c->shift = (int)v;
+    if (v != c->shift || c->shift < 0 || c->shift > 3)
+        not_impl(&bad, "Shifting", v, v == 4 ? "advanced shifting" : "unknown",
+                 "0 (none), 1 (not near walls), 2 (not near fixed walls), 3 (full)");
+    c->shift_coef = vres_params_get(P, "ShiftCoef", -2);
+    c->shift_tfs = vres_params_get(P, "ShiftTFS", 0);
+    if (c->shift && !(c->shift_tfs >= 0 && c->shift_tfs < c->dim))
+        vres_error("ShiftTFS=%g: must lie in [0, %d) (the dimension: div r inside the fluid)", c->shift_tfs, c->dim),
+            bad = 1;
     if ((v = vres_params_get(P, "DtFixed", 0)) != 0) not_impl(&bad, "DtFixed", v, "fixed time step", "0 (variable)");
     if ((v = vres_params_get(P, "MinFluidStop", 0)) != 0)
         not_impl(&bad, "MinFluidStop", v, "particle exclusion", "0 (a bad particle stops the run)");
@@ -164,12 +287,12 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
         not_impl(&bad, "DensityDT", vres_params_get(P, "DensityDT", 0), "Fourtakas on all the fluid or unknown",
                  "0 (none), 1 (Molteni), 2 (Fourtakas)");
     c->ddt_delta = vres_params_get(P, "DensityDTvalue", 0.1);
-    const vres_param *per = vres_params_find(P, "periodic");
-    if (per && per->n == 3 && (per->v[0] || per->v[1] || per->v[2]))
-        vres_error("periodic boundaries: not implemented yet"), bad = 1;
+    if (periodic_box(s, c) != 0) bad = 1;
     const vres_param *vp = vres_params_find(P, "Visco");
-    if (!vp || vp->n < 1) vres_error("the store has no parameter Visco (artificial viscosity alpha): give it in the "
-                                     "case (<parameter key=\"Visco\" value=\"0.01\"/>) or with vres-gencase --set"), bad = 1;
+    if (!vp || vp->n < 1)
+        vres_error("the store has no parameter Visco (artificial viscosity alpha, or kinematic viscosity in m^2/s "
+                   "when laminar): give it in the case (<parameter key=\"Visco\" value=\"0.01\"/>) or with "
+                   "vres-gencase --set"), bad = 1;
     else if (!(vp->v[0] >= 0)) vres_error("Visco=%g: must not be negative", vp->v[0]), bad = 1;
     else c->visco = vp->v[0];
     c->visco_bound = vres_params_get(P, "ViscoBoundFactor", 1);
@@ -188,7 +311,7 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
         if (!is_known(P->p[i].name)) vres_warn("parameter %s is not known to vres-run: not used", P->p[i].name);
     const vres_param *dti = vres_params_find(P, "DtIni");
     if (dti && dti->n && dti->v[0] != 0 && strcmp(dti->origin, "default"))
-        vres_info("DtIni=%g not used: the Symplectic scheme takes its first dt from the forces at the start", dti->v[0]);
+        vres_info("DtIni=%g not used: the first dt comes from the forces at the start", dti->v[0]);
     if (vres_params_get(P, "DtAllParticles", 0) != 0)
         vres_info("DtAllParticles=1 changes nothing here: fixed walls have no acceleration");
     if (s->gauges_xml) vres_info("gauges are not evaluated during the run: vres-probe reads them from the snapshots");
@@ -201,20 +324,52 @@ static char *modules(const run_cfg *c)
     static const char *const ddt_name[] = {"", " ddt-molteni", " ddt-fourtakas"};
     char ddt[64] = "";
     if (c->ddt) snprintf(ddt, sizeof ddt, "%s(delta=%g)", ddt_name[c->ddt], c->ddt_delta);
-    char walls[64] = "";
-    if (c->nwall) snprintf(walls, sizeof walls, " dbc-walls(viscobound=%g)", c->visco_bound);
-    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) artificial-viscosity(alpha=%g)%s%s symplectic "
-                          "cpu-openmp(%d threads)", c->dim, c->gamma, c->visco, walls, ddt, c->threads);
+    char walls[96] = "";
+    if (c->nwall && c->mdbc)
+        snprintf(walls, sizeof walls, " mdbc-walls(slip=vel0, %zu with normals, viscobound=%g)", c->nnormal,
+                 c->visco_bound);
+    else if (c->nwall) snprintf(walls, sizeof walls, " dbc-walls(viscobound=%g)", c->visco_bound);
+    char visc[64];
+    if (c->visco_kind == VRES_VISC_LAMINAR) snprintf(visc, sizeof visc, "laminar-viscosity(nu=%g m^2/s)", c->visco);
+    else snprintf(visc, sizeof visc, "artificial-viscosity(alpha=%g)", c->visco);
+    char moving[64] = "";
+    if (c->nmoving) snprintf(moving, sizeof moving, " moving-walls(%zu particles)", c->nmoving);
+    char shift[96] = "";
+    if (c->shift)
+        snprintf(shift, sizeof shift, " shifting(%s, coef=%g, tfs=%g)",
+                 c->shift == 1 ? "nobound" : c->shift == 2 ? "nofixed" : "full", c->shift_coef, c->shift_tfs);
+    char per[64] = "";
+    if (c->periodic[0] || c->periodic[1] || c->periodic[2])
+        snprintf(per, sizeof per, " periodic(%s%s%s)", c->periodic[0] ? "x" : "", c->periodic[1] ? "y" : "",
+                 c->periodic[2] ? "z" : "");
+    char step[48] = "symplectic";
+    if (c->verlet) snprintf(step, sizeof step, "verlet(euler every %d)", c->verlet_steps);
+    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s %s cpu-openmp(%d threads)", c->dim,
+                          c->gamma, visc, walls, moving, ddt, shift, per, step, c->threads);
 }
 
 /* The interaction variant for this scene: no diffusion code when DensityDT=0, no wall tests
- * when there are no walls. */
+ * when there are no walls, only the viscosity asked for. */
 static interact_fn pick_interaction(const run_cfg *c)
 {
-    static const interact_fn table[2][3] = {
-        {vres_sph_plain_cpu, vres_sph_molteni_cpu, vres_sph_fourtakas_cpu},
-        {vres_sph_dbc_cpu, vres_sph_dbc_molteni_cpu, vres_sph_dbc_fourtakas_cpu}};
-    return table[c->nwall > 0][c->ddt];
+    static const interact_fn table[2][2][3] = {
+        {{vres_sph_plain_cpu, vres_sph_molteni_cpu, vres_sph_fourtakas_cpu},
+         {vres_sph_dbc_cpu, vres_sph_dbc_molteni_cpu, vres_sph_dbc_fourtakas_cpu}},
+        {{vres_sph_laminar_plain_cpu, vres_sph_laminar_molteni_cpu, vres_sph_laminar_fourtakas_cpu},
+         {vres_sph_laminar_dbc_cpu, vres_sph_laminar_dbc_molteni_cpu, vres_sph_laminar_dbc_fourtakas_cpu}}};
+    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
+/* The shifting variant of pick_interaction's choice. */
+static interact_shift_fn pick_interaction_shift(const run_cfg *c)
+{
+    static const interact_shift_fn table[2][2][3] = {
+        {{vres_sph_shift_plain_cpu, vres_sph_shift_molteni_cpu, vres_sph_shift_fourtakas_cpu},
+         {vres_sph_shift_dbc_cpu, vres_sph_shift_dbc_molteni_cpu, vres_sph_shift_dbc_fourtakas_cpu}},
+        {{vres_sph_shift_laminar_plain_cpu, vres_sph_shift_laminar_molteni_cpu, vres_sph_shift_laminar_fourtakas_cpu},
+         {vres_sph_shift_laminar_dbc_cpu, vres_sph_shift_laminar_dbc_molteni_cpu,
+          vres_sph_shift_laminar_dbc_fourtakas_cpu}}};
+    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
 }
 
 /* Make the run directory (and parents) and check it holds no earlier run. 0, or -1 after
@@ -257,6 +412,9 @@ static int sort_by_cell(run_work *w, vres_domain *d, int carry)
 {
     vres_cells_build(&w->cells, d->pos, d->n);
     if (vres_cells_reorder(&w->cells, d) != 0) return -1;
+    if (w->posref) vres_cells_gather(&w->cells, w->posref, 3 * sizeof(double));
+    if (w->velm1) vres_cells_gather(&w->cells, w->velm1, 3 * sizeof(float));
+    if (w->rhom1) vres_cells_gather(&w->cells, w->rhom1, sizeof(float));
     if (!carry) return 0;
     vres_cells_gather(&w->cells, w->pos0, 3 * sizeof(double));
     vres_cells_gather(&w->cells, w->vel0, 3 * sizeof(float));
@@ -266,11 +424,16 @@ static int sort_by_cell(run_work *w, vres_domain *d, int carry)
 
 /* EOS then the interaction at the domain's current state, sorted by cell first. Returns the
  * largest fluid |acceleration| (m/s^2) and, in *visc_max, the largest viscous rate (1/s). */
-static double forces(run_work *w, vres_domain *d, interact_fn interact, const vres_sph_consts *C, const run_cfg *c,
-                     double *visc_max)
+static double forces(run_work *w, vres_domain *d, interact_fn interact, interact_shift_fn interact_shift,
+                     const vres_sph_consts *C, const run_cfg *c, double *visc_max)
 {
+    if (c->mdbc && c->nnormal)
+        vres_mdbc_cpu(d->n, &w->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, *C, c->dim);
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
-    interact(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar, w->visc);
+    if (interact_shift)
+        interact_shift(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar,
+                       w->visc, w->shiftv);
+    else interact(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar, w->visc);
     double amax2 = 0, vmax = 0;
     const double *ace = w->ace;
     const uint8_t *type = d->type;
@@ -407,18 +570,78 @@ static int stop_unstable(vres_store *s, run_work *w, const run_cfg *c, const cha
     return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
 }
 
+/* Put the moving walls where their motion has them at time t (s), with its velocity there:
+ * x = M x_start with M the motion from t_start to t, v = v_p + w x (x - p). */
+static void move_walls(const vres_store *s, run_work *w, vres_domain *d, double t)
+{
+    if (!w->posref) return;
+    for (size_t k = 0; k < s->nbodies; k++) {
+        vres_motion_state *m = &w->mv[k];
+        const vres_motion_state *m0 = &w->mv0[k];
+        vres_motion_eval(&s->body[k], t, m);
+        /* M = T(t) T(t_start)^-1: R = R_t R_0^T, d = d_t - R d_0 */
+        double R[9], dd[3];
+        for (int i = 0; i < 3; i++)
+            for (int j = 0; j < 3; j++)
+                R[3 * i + j] = m->R[3 * i] * m0->R[3 * j] + m->R[3 * i + 1] * m0->R[3 * j + 1] +
+                               m->R[3 * i + 2] * m0->R[3 * j + 2];
+        for (int i = 0; i < 3; i++)
+            dd[i] = m->d[i] - (R[3 * i] * m0->d[0] + R[3 * i + 1] * m0->d[1] + R[3 * i + 2] * m0->d[2]);
+        memcpy(m->R, R, sizeof R);
+        memcpy(m->d, dd, sizeof dd);
+    }
+    const double *xr = w->posref;
+    const vres_motion_state *mv = w->mv;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->type[i] != VRES_MOVING) continue;
+        const vres_motion_state *m = &mv[body_of(s, d->mk[i])];
+        double *x = &d->pos[3 * i], r[3];
+        for (int a = 0; a < 3; a++)
+            x[a] = m->R[3 * a] * xr[3 * i] + m->R[3 * a + 1] * xr[3 * i + 1] + m->R[3 * a + 2] * xr[3 * i + 2] +
+                   m->d[a];
+        for (int a = 0; a < 3; a++) r[a] = x[a] - m->p[a];
+        d->vel[3 * i] = (float)(m->v[0] + m->w[1] * r[2] - m->w[2] * r[1]);
+        d->vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
+        d->vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
+    }
+}
+
+/* Move each fluid particle by its shifting displacement (shiftv[4i..4i+2], m; zero elsewhere). */
+static void apply_shift(vres_domain *d, const double *shiftv)
+{
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < d->n; i++)
+        for (int k = 0; k < 3; k++) d->pos[3 * i + k] += shiftv[4 * i + k];
+}
+
 /* Allocate the working arrays and the cells over the simulation domain. 0, or -1. */
 static int work_init(run_work *w, const vres_store *s, const run_cfg *c)
 {
     size_t n = s->dom[0].n;
     memset(w, 0, sizeof *w);
-    if (vres_cells_init(&w->cells, c->dim, 2.0 * c->h, s->domain_min, s->domain_max, NULL) != 0) return -1;
+    if (vres_cells_init(&w->cells, c->dim, 2.0 * c->h, c->box_lo, c->box_hi, c->periodic) != 0) return -1;
     w->pos0 = vres_xmalloc(3 * n * sizeof *w->pos0 + 1);
     w->vel0 = vres_xmalloc(3 * n * sizeof *w->vel0 + 1);
     w->rho0 = vres_xmalloc(n * sizeof *w->rho0 + 1);
     w->ace = vres_xcalloc(3 * n + 1, sizeof *w->ace);
     w->ar = vres_xcalloc(n + 1, sizeof *w->ar);
     w->visc = vres_xcalloc(n + 1, sizeof *w->visc);
+    if (c->shift) w->shiftv = vres_xcalloc(4 * n + 1, sizeof *w->shiftv);
+    if (c->verlet) { /* the previous step of the first is the start itself, as DualSPHysics */
+        w->velm1 = vres_xmalloc(3 * n * sizeof *w->velm1 + 1);
+        w->rhom1 = vres_xmalloc(n * sizeof *w->rhom1 + 1);
+        memcpy(w->velm1, s->dom[0].vel, 3 * n * sizeof *w->velm1);
+        memcpy(w->rhom1, s->dom[0].rho, n * sizeof *w->rhom1);
+    }
+    if (c->nmoving) {
+        w->posref = vres_xmalloc(3 * n * sizeof *w->posref + 1);
+        memcpy(w->posref, s->dom[0].pos, 3 * n * sizeof *w->posref);
+        w->t_start = s->time;
+        w->mv0 = vres_xcalloc(s->nbodies + 1, sizeof *w->mv0);
+        w->mv = vres_xcalloc(s->nbodies + 1, sizeof *w->mv);
+        for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], s->time, &w->mv0[k]);
+    }
     return 0;
 }
 
@@ -432,6 +655,12 @@ static void work_free(run_work *w)
     free(w->ace);
     free(w->ar);
     free(w->visc);
+    free(w->posref);
+    free(w->shiftv);
+    free(w->velm1);
+    free(w->rhom1);
+    free(w->mv0);
+    free(w->mv);
 }
 
 /* The kernel and physics constants of the interaction. */
@@ -443,8 +672,12 @@ static vres_sph_consts make_consts(const run_cfg *c)
     C.fourh2 = 4.0 * c->h * c->h;
     C.eta2 = 0.01 * c->h * c->h;
     C.cs0 = c->cs0;
-    C.alpha = c->visco;
-    C.alpha_wall = c->visco * c->visco_bound;
+    int lam = c->visco_kind == VRES_VISC_LAMINAR;
+    C.alpha = lam ? 0 : c->visco;
+    C.alpha_wall = lam ? 0 : c->visco * c->visco_bound;
+    C.nu = lam ? c->visco : 0;
+    C.nu_wall = lam ? c->visco * c->visco_bound : 0;
+    C.shift_mode = c->shift;
     C.ddt_khc = 2.0 * c->h * c->ddt_delta * c->cs0;
     C.rho0 = c->rho0;
     C.rho0_over_B = c->rho0 / c->B;
@@ -461,10 +694,13 @@ static int time_loop(vres_store *s, const run_cfg *c, const char *dir, FILE *tsv
     if (work_init(&w, s, c) != 0) return VRES_RUN_FAIL;
     vres_sph_consts C = make_consts(c);
     interact_fn interact = pick_interaction(c);
+    interact_shift_fn interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
     double t = s->time, dt = 0, next_out = t + c->tout;
     long step = s->step, step_start = s->step;
+    int verlet_count = 0; /* Verlet steps since the last Euler step */
     run_clock clk = {wall_now(), wall_now(), step, 0};
     int rc = VRES_RUN_OK;
+    move_walls(s, &w, d, t); /* their velocity at the start, which the store may not hold */
     size_t bad = find_bad(d, &w.cells, c);
     if (bad != (size_t)-1) {
         diagnose(d, &w.cells, c, bad, step, t);
@@ -479,7 +715,7 @@ static int time_loop(vres_store *s, const run_cfg *c, const char *dir, FILE *tsv
         memcpy(w.pos0, d->pos, 3 * d->n * sizeof *d->pos);
         memcpy(w.vel0, d->vel, 3 * d->n * sizeof *d->vel);
         memcpy(w.rho0, d->rho, d->n * sizeof *d->rho);
-        double amax = forces(&w, d, interact, &C, c, &visc);
+        double amax = forces(&w, d, interact, c->verlet ? interact_shift : NULL, &C, c, &visc);
         double dt1 = amax > 0 ? sqrt(c->h / amax) : INFINITY;
         dt = c->cfl * fmin(dt1, c->h / (c->cs0 + c->h * visc));
         if (!(dt >= c->dtmin)) {
@@ -488,19 +724,56 @@ static int time_loop(vres_store *s, const run_cfg *c, const char *dir, FILE *tsv
             rc = stop_unstable(s, &w, c, dir, t, step);
             break;
         }
-        vres_sph_predict_cpu(d->n, d->type, w.pos0, w.vel0, w.rho0, w.ace, w.ar, d->pos, d->vel, d->rho, dt, c->rho0);
-        if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
-            diagnose(d, &w.cells, c, bad, step + 1, t + 0.5 * dt);
-            rc = stop_unstable(s, &w, c, dir, t, step);
-            break;
-        }
-        if (sort_by_cell(&w, d, 1) != 0) { rc = VRES_RUN_FAIL; break; }
-        forces(&w, d, interact, &C, c, &visc);
-        vres_sph_correct_cpu(d->n, d->type, w.pos0, w.vel0, w.rho0, w.ace, w.ar, d->pos, d->vel, d->rho, dt, c->rho0);
-        if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
-            diagnose(d, &w.cells, c, bad, step + 1, t + dt);
-            rc = stop_unstable(s, &w, c, dir, t, step);
-            break;
+        if (c->verlet) {
+            int euler = ++verlet_count >= c->verlet_steps;
+            if (euler) verlet_count = 0;
+            if (interact_shift)
+                vres_shift_cpu(d->n, d->type, d->vel, w.shiftv, dt, c->shift_coef * c->h, c->shift_tfs, c->dim,
+                               0.1 * d->dp);
+            vres_sph_verlet_cpu(d->n, d->type, d->pos, d->vel, d->rho, w.velm1, w.rhom1, w.ace, w.ar, dt, euler,
+                                c->rho0);
+            if (interact_shift) apply_shift(d, w.shiftv);
+            move_walls(s, &w, d, t + dt);
+            vres_cells_wrap(&w.cells, d->pos, d->n);
+            if (c->mdbc && c->nnormal)
+                vres_mdbc_cpu(d->n, &w.cells, d->pos, d->rho, d->mass_p, d->type, d->normal, C, c->dim);
+            if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
+                diagnose(d, &w.cells, c, bad, step + 1, t + dt);
+                rc = stop_unstable(s, &w, c, dir, t, step);
+                break;
+            }
+        } else {
+            vres_sph_predict_cpu(d->n, d->type, w.pos0, w.vel0, w.rho0, w.ace, w.ar, d->pos, d->vel, d->rho, dt,
+                                 c->rho0);
+            move_walls(s, &w, d, t + 0.5 * dt);
+            vres_cells_wrap(&w.cells, d->pos, d->n);
+            if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
+                diagnose(d, &w.cells, c, bad, step + 1, t + 0.5 * dt);
+                rc = stop_unstable(s, &w, c, dir, t, step);
+                break;
+            }
+            if (sort_by_cell(&w, d, 1) != 0) { rc = VRES_RUN_FAIL; break; }
+            forces(&w, d, interact, interact_shift, &C, c, &visc);
+            /* shifting from the predicted state's velocity and concentration gradient, added in the
+               corrector (DualSPHysics' ComputeSymplecticCorr) */
+            if (interact_shift)
+                vres_shift_cpu(d->n, d->type, d->vel, w.shiftv, dt, c->shift_coef * c->h, c->shift_tfs, c->dim,
+                               0.1 * d->dp);
+            vres_sph_correct_cpu(d->n, d->type, w.pos0, w.vel0, w.rho0, w.ace, w.ar, d->pos, d->vel, d->rho, dt,
+                                 c->rho0);
+            if (interact_shift) apply_shift(d, w.shiftv);
+            move_walls(s, &w, d, t + dt);
+            vres_cells_wrap(&w.cells, d->pos, d->n);
+            /* mDBC wall densities follow the fluid, not the continuity equation: set them for the
+               state the step ends with (the cells of the predicted state still hold every
+               neighbour but those at the kernel's edge, where W vanishes) */
+            if (c->mdbc && c->nnormal)
+                vres_mdbc_cpu(d->n, &w.cells, d->pos, d->rho, d->mass_p, d->type, d->normal, C, c->dim);
+            if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
+                diagnose(d, &w.cells, c, bad, step + 1, t + dt);
+                rc = stop_unstable(s, &w, c, dir, t, step);
+                break;
+            }
         }
         t += dt;
         step++;

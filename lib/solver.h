@@ -1,6 +1,8 @@
-/* solver.h - time integration of a single-domain store: weakly compressible SPH with DBC walls
- * and the Symplectic scheme (physics in kernels/sph.h), on the CPU with OpenMP, writing a run
- * directory of snapshots and a run.tsv log (man/man1/vres-run.1). */
+/* solver.h - time integration of a single-domain store: weakly compressible SPH with artificial
+ * or laminar viscosity, DBC or mDBC walls (fixed or with a prescribed motion), periodic axes,
+ * particle shifting, and the Symplectic or Verlet scheme (physics in kernels/sph.h and
+ * kernels/mdbc.h), on the CPU with OpenMP, writing a run directory of snapshots and a run.tsv
+ * log (man/man1/vres-run.1). */
 #ifndef VRES_SOLVER_H
 #define VRES_SOLVER_H
 

@@ -38,15 +38,19 @@ if VRES_TEST_STORE_OUT=$T/three.h5 "$MAKER" >/dev/null 2>&1; then
 else notok "make the three-domain store with $MAKER (build it: make $VRES_BUILD/tests/test_store)"; fi
 
 # parameters not implemented yet: each named, never ignored
-for kv in "Boundary=2:Boundary=2 \(mDBC\) is not implemented yet" \
-          "StepAlgorithm=1:StepAlgorithm=1 \(Verlet\) is not implemented yet" \
-          "ViscoTreatment=3:ViscoTreatment=3 \(laminar\) is not implemented yet" \
-          "Shifting=1:Shifting=1 .* not implemented yet" \
+for kv in "ViscoTreatment=2:ViscoTreatment=2 \(laminar\+SPS\) is not implemented yet" \
+          "XPeriodicIncZ=0.1:periodic along x with an increment 0.1 m along z \(XPeriodicIncZ\): not implemented yet" \
+          "Shifting=4:Shifting=4 \(advanced shifting\) is not implemented yet" \
           "DensityDT=3:DensityDT=3 .* not implemented yet" \
           "DtFixed=0.0001:DtFixed=0.0001 .* not implemented yet"; do
     set=${kv%%:*}
     "$GEN" -q --set "$set" "$TANK" -o "$T/p.h5" || notok "gencase --set $set"
     refused 1 "${kv#*:}" "refuses $set" "$T/p.h5"
+done
+# mDBC slip modes other than 1
+for m in 2 3; do
+    "$GEN" -q --set Boundary=2 --set SlipMode=$m "$TANK" -o "$T/p.h5" || notok "gencase --set SlipMode=$m"
+    refused 1 "SlipMode=$m \(mDBC .*\) is not implemented yet" "refuses mDBC SlipMode=$m" "$T/p.h5"
 done
 
 # CFL outside (0, 1]: vres-gencase refuses it, so the store is edited by the solver unit test

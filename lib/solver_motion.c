@@ -1,0 +1,179 @@
+/* solver_motion.c - rigid transforms of prescribed motions (see solver_motion.h). */
+#include "solver_motion.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "log.h"
+
+#define MOTION_PI 3.14159265358979323846
+
+/* The segment of b with this id, or NULL. */
+static const vres_motion_seg *find_seg(const vres_body *b, int id)
+{
+    for (size_t i = 0; i < b->nseg; i++)
+        if (b->seg[i].id == id) return &b->seg[i];
+    return NULL;
+}
+
+/* Unit vector along p1 -> p2 into u; its length (m). */
+static double axis_of(const vres_motion_seg *s, double u[3])
+{
+    double L = 0;
+    for (int k = 0; k < 3; k++) u[k] = s->axis_p2[k] - s->axis_p1[k], L += u[k] * u[k];
+    L = sqrt(L);
+    for (int k = 0; k < 3; k++) u[k] = L > 0 ? u[k] / L : 0;
+    return L;
+}
+
+/* The transform R x + d of a right-handed rotation by angle th (rad) about the axis u (unit)
+ * through p (Rodrigues' formula). */
+static void rotation(const double u[3], const double p[3], double th, double R[9], double d[3])
+{
+    double c = cos(th), s = sin(th), C = 1 - c;
+    R[0] = c + u[0] * u[0] * C, R[1] = u[0] * u[1] * C - u[2] * s, R[2] = u[0] * u[2] * C + u[1] * s;
+    R[3] = u[1] * u[0] * C + u[2] * s, R[4] = c + u[1] * u[1] * C, R[5] = u[1] * u[2] * C - u[0] * s;
+    R[6] = u[2] * u[0] * C - u[1] * s, R[7] = u[2] * u[1] * C + u[0] * s, R[8] = c + u[2] * u[2] * C;
+    for (int i = 0; i < 3; i++) d[i] = p[i] - (R[3 * i] * p[0] + R[3 * i + 1] * p[1] + R[3 * i + 2] * p[2]);
+}
+
+/* m's transform followed by (R, d): m becomes x -> R (Rm x + dm) + d. */
+static void compose(vres_motion_state *m, const double R[9], const double d[3])
+{
+    double R2[9], d2[3];
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            R2[3 * i + j] = R[3 * i] * m->R[j] + R[3 * i + 1] * m->R[3 + j] + R[3 * i + 2] * m->R[6 + j];
+        d2[i] = R[3 * i] * m->d[0] + R[3 * i + 1] * m->d[1] + R[3 * i + 2] * m->d[2] + d[i];
+    }
+    memcpy(m->R, R2, sizeof R2);
+    memcpy(m->d, d2, sizeof d2);
+}
+
+/* Segment s after tau seconds of it: its transform (R, d), the velocity field at tau into m's
+ * v, w, p, and the linear and angular velocity it ends with (for a next segment that inherits
+ * them, vel_prev). vprev, wprev: those the previous segment ended with. */
+static void segment(const vres_motion_seg *s, double tau, const double vprev[3], double wprev, double R[9],
+                    double d[3], vres_motion_state *m, double vend[3], double *wend)
+{
+    static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    double u[3], th = 0, wa = 0;
+    memcpy(R, I, sizeof I);
+    memset(d, 0, 3 * sizeof *d);
+    memset(m->v, 0, sizeof m->v);
+    memset(m->w, 0, sizeof m->w);
+    memset(m->p, 0, sizeof m->p);
+    switch (s->kind) {
+    case VRES_MV_RECT:
+        for (int k = 0; k < 3; k++) d[k] = s->vel[k] * tau, m->v[k] = s->vel[k];
+        break;
+    case VRES_MV_RECTACE:
+        for (int k = 0; k < 3; k++) {
+            double v0 = s->vel_prev ? vprev[k] : s->vel[k];
+            d[k] = v0 * tau + 0.5 * s->ace[k] * tau * tau;
+            m->v[k] = v0 + s->ace[k] * tau;
+        }
+        break;
+    case VRES_MV_RECTSIN: /* vel: amplitude (m), ace: frequency (Hz), phase (rad) */
+        for (int k = 0; k < 3; k++) {
+            double om = 2 * MOTION_PI * s->ace[k];
+            d[k] = s->vel[k] * (sin(s->phase[k] + om * tau) - sin(s->phase[k]));
+            m->v[k] = s->vel[k] * om * cos(s->phase[k] + om * tau);
+        }
+        break;
+    case VRES_MV_ROT:
+        th = s->angvel * tau, wa = s->angvel;
+        break;
+    case VRES_MV_ROTACE: {
+        double w0 = s->vel_prev ? wprev : s->angvel;
+        th = w0 * tau + 0.5 * s->angace * tau * tau, wa = w0 + s->angace * tau;
+        break;
+    }
+    case VRES_MV_ROTSIN: { /* angvel: amplitude (rad), angace: frequency (Hz), angphase (rad) */
+        double om = 2 * MOTION_PI * s->angace;
+        th = s->angvel * (sin(s->angphase + om * tau) - sin(s->angphase));
+        wa = s->angvel * om * cos(s->angphase + om * tau);
+        break;
+    }
+    default: /* VRES_MV_WAIT */
+        break;
+    }
+    if (s->kind == VRES_MV_ROT || s->kind == VRES_MV_ROTACE || s->kind == VRES_MV_ROTSIN) {
+        axis_of(s, u);
+        rotation(u, s->axis_p1, th, R, d);
+        for (int k = 0; k < 3; k++) m->w[k] = wa * u[k], m->p[k] = s->axis_p1[k];
+    }
+    memcpy(vend, m->v, 3 * sizeof *vend);
+    *wend = wa;
+}
+
+void vres_motion_eval(const vres_body *b, double t, vres_motion_state *m)
+{
+    static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    memset(m, 0, sizeof *m);
+    memcpy(m->R, I, sizeof I);
+    if (!(t > b->mv_start)) return;
+    int frozen = b->mv_finish >= 0 && t > b->mv_finish;
+    double left = (frozen ? b->mv_finish : t) - b->mv_start, vprev[3] = {0, 0, 0}, wprev = 0;
+    const vres_motion_seg *s = find_seg(b, b->mv_first);
+    vres_motion_state cur;
+    /* a chain that loops repeats its segments as often as the time needs; vres_motion_check
+       has ruled out loops that take no time */
+    while (s && left > 0) {
+        double dur = s->duration < 0 ? INFINITY : s->duration, R[9], d[3], vend[3], wend;
+        int last = left <= dur;
+        segment(s, last ? left : dur, vprev, wprev, R, d, &cur, vend, &wend);
+        compose(m, R, d);
+        if (last) {
+            if (!frozen) memcpy(m->v, cur.v, sizeof m->v), memcpy(m->w, cur.w, sizeof m->w),
+                         memcpy(m->p, cur.p, sizeof m->p);
+            return;
+        }
+        left -= dur;
+        memcpy(vprev, vend, sizeof vprev);
+        wprev = wend;
+        s = s->next >= 0 ? find_seg(b, s->next) : NULL;
+    }
+}
+
+int vres_motion_check(const vres_body *b)
+{
+    const vres_motion_seg *s = find_seg(b, b->mv_first);
+    if (!s) {
+        vres_error("moving body mkbound %d: its first motion segment %d does not exist", b->mkbound, b->mv_first);
+        return -1;
+    }
+    for (size_t i = 0; i < b->nseg; i++) {
+        const vres_motion_seg *g = &b->seg[i];
+        double u[3];
+        if ((g->kind == VRES_MV_ROT || g->kind == VRES_MV_ROTACE || g->kind == VRES_MV_ROTSIN) && !(axis_of(g, u) > 0)) {
+            vres_error("moving body mkbound %d: motion segment %d has a rotation axis of zero length", b->mkbound, g->id);
+            return -1;
+        }
+        if (g->next >= 0 && !find_seg(b, g->next)) {
+            vres_error("moving body mkbound %d: motion segment %d names a next segment %d that does not exist",
+                       b->mkbound, g->id, g->next);
+            return -1;
+        }
+        if (g->kind < VRES_MV_WAIT || g->kind > VRES_MV_ROTSIN) {
+            vres_error("moving body mkbound %d: motion segment %d has an unknown kind %d", b->mkbound, g->id, g->kind);
+            return -1;
+        }
+    }
+    /* after nseg + 1 segments a chain that has not ended is in a loop; the loop must take time,
+       or following it would never reach a later time */
+    for (size_t k = 0; s && k <= b->nseg; k++) {
+        if (s->duration < 0) return 0;
+        s = s->next >= 0 ? find_seg(b, s->next) : NULL;
+    }
+    double loop = 0;
+    for (size_t k = 0; s && k <= b->nseg; k++) {
+        loop += s->duration;
+        s = s->next >= 0 ? find_seg(b, s->next) : NULL;
+    }
+    if (s && !(loop > 0)) {
+        vres_error("moving body mkbound %d: its motion segments loop without taking time (durations 0)", b->mkbound);
+        return -1;
+    }
+    return 0;
+}
