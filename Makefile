@@ -26,7 +26,7 @@ OPT       ?= -O2 -g
 WARN      := -Wall -Wextra
 CFLAGS    := -std=c11 $(WARN) $(OPT) -fopenmp -D_POSIX_C_SOURCE=200809L -Ilib -Ikernels $(PKG_CFLAGS)
 CXXFLAGS  := -std=c++17 $(WARN) $(OPT) -Ilib -isystem $(VTK_INC)
-LDLIBS    := $(PKG_LIBS) $(VTK_LIBS) -fopenmp -lm -lstdc++ $(if $(HDF5_LIBDIR),-Wl$(comma)-rpath$(comma)$(HDF5_LIBDIR))
+LDLIBS    := $(PKG_LIBS) $(VTK_LIBS) -lfftw3 -fopenmp -lm -lstdc++ $(if $(HDF5_LIBDIR),-Wl$(comma)-rpath$(comma)$(HDF5_LIBDIR))
 
 # CUDA: built wherever nvcc is found; CUDA_ARCH kept short (one arch + its PTX for newer GPUs).
 NVCC      ?= $(shell command -v nvcc 2>/dev/null || (test -x /usr/local/cuda/bin/nvcc && echo /usr/local/cuda/bin/nvcc))
@@ -103,6 +103,14 @@ bench: all
 
 demo: all
 	$(MAKE) -f pipelines/demo.mk
+
+# Validation cases at their validation dp (pipelines/validate.mk: minutes to an hour on 2 cores)
+# and error-against-run-time sweeps (pipelines/sweep.mk: GNU parallel, reports in pipelines/reports/).
+validate: all
+	$(MAKE) -f pipelines/validate.mk
+sweep: all
+	$(MAKE) -f pipelines/sweep.mk
+.PHONY: validate sweep
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/man/man1 \

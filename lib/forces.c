@@ -1,0 +1,346 @@
+/* forces.c - force and moment of the fluid on the wall particles of one mkbound (see forces.h):
+ * per domain, a cell list over its fluid particles, then for each body particle the pair
+ * terms of kernels/sph.h summed over its fluid neighbours. */
+#include "forces.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../kernels/sph.h"
+#include "../kernels/wendland.h"
+#include "cells.h"
+#include "log.h"
+
+/* The interaction settings the store's parameters give, shared by its domains. */
+typedef struct force_cfg {
+    int dim;            /* 2 (x-z plane) or 3 */
+    int visco_kind;     /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment) */
+    double visco_wall;  /* Visco * ViscoBoundFactor: alpha, or nu (m^2/s) when laminar */
+    double cs0;         /* speed of sound c0 (m/s), in the artificial viscosity */
+    int periodic[3];    /* 1 on the axes the store makes periodic */
+} force_cfg;
+
+size_t vres_forces_count(const vres_store *s, int mkbound)
+{
+    size_t n = 0;
+    for (size_t k = 0; k < s->ndomains; k++) {
+        const vres_domain *d = &s->dom[k];
+        for (size_t i = 0; i < d->n; i++) n += vres_ptype_is_wall(d->type[i]) && d->mk[i] == mkbound;
+    }
+    return n;
+}
+
+/* One (mkbound, wall type) class with its particle count. */
+typedef struct mk_class {
+    int32_t mk;    /* mkbound */
+    int type;      /* vres_ptype of its particles (the first met when mixed) */
+    size_t count;  /* particles over all domains */
+} mk_class;
+
+/* qsort comparator of classes by mkbound. */
+static int cmp_class(const void *a, const void *b)
+{
+    int32_t x = ((const mk_class *)a)->mk, y = ((const mk_class *)b)->mk;
+    return x < y ? -1 : x > y;
+}
+
+char *vres_forces_mk_list(const vres_store *s)
+{
+    size_t n = 0, cap = 8;
+    mk_class *c = vres_xmalloc(cap * sizeof *c);
+    for (size_t k = 0; k < s->ndomains; k++) {
+        const vres_domain *d = &s->dom[k];
+        for (size_t i = 0; i < d->n; i++) {
+            if (!vres_ptype_is_wall(d->type[i])) continue;
+            size_t j = 0;
+            while (j < n && c[j].mk != d->mk[i]) j++; /* few distinct mkbounds: a linear search */
+            if (j == n) {
+                if (n == cap) c = vres_xrealloc(c, (cap *= 2) * sizeof *c);
+                c[n].mk = d->mk[i], c[n].type = d->type[i], c[n].count = 0, n++;
+            }
+            c[j].count++;
+        }
+    }
+    qsort(c, n, sizeof *c, cmp_class);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    for (size_t j = 0; j < n; j++)
+        fprintf(f, "%s%d (%s, %zu)", j ? ", " : "", c[j].mk, vres_ptype_name(c[j].type), c[j].count);
+    if (!n) fprintf(f, "none");
+    fclose(f);
+    free(c);
+    return text;
+}
+
+/* Read the interaction settings from the store's parameters. 0, or -1 after printing why,
+ * prefixed with where. */
+static int read_cfg(const vres_store *s, const char *where, force_cfg *c)
+{
+    const vres_params *P = &s->params;
+    memset(c, 0, sizeof *c);
+    c->dim = s->dim;
+    double kernel = vres_params_get(P, "Kernel", 2);
+    if (kernel != 2) {
+        vres_error("%sKernel=%g: vres-forces computes with the Wendland kernel (2), as vres-run does", where, kernel);
+        return -1;
+    }
+    c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", VRES_VISC_ARTIFICIAL);
+    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR) {
+        vres_error("%sViscoTreatment=%g: vres-forces knows 1 (artificial) and 3 (laminar) viscosity", where,
+                   vres_params_get(P, "ViscoTreatment", 1));
+        return -1;
+    }
+    const vres_param *vp = vres_params_find(P, "Visco");
+    if (!vp || vp->n < 1 || !(vp->v[0] >= 0)) {
+        vres_error("%sno valid parameter Visco: the viscous part of the force needs it", where);
+        return -1;
+    }
+    double bound = vres_params_get(P, "ViscoBoundFactor", 1);
+    c->visco_wall = vp->v[0] * bound;
+    c->cs0 = vres_params_get(P, "cs0", 0);
+    if (c->visco_kind == VRES_VISC_ARTIFICIAL && c->visco_wall > 0 && !(c->cs0 > 0)) {
+        vres_error("%sno valid parameter cs0 (speed of sound): the artificial viscosity needs it", where);
+        return -1;
+    }
+    const vres_param *per = vres_params_find(P, "periodic");
+    for (int a = 0; a < 3; a++) c->periodic[a] = per && per->n == 3 && per->v[a] != 0;
+    return 0;
+}
+
+/* The cells' box for domain d: on periodic axes the simulation domain as vres-run takes it
+ * (widened by dp/2 on each side when the domain is the particles' automatic extent, so that the
+ * lattice repeats with its spacing across the boundary); on other axes the bounding box of
+ * the fluid and body positions given. */
+static void cell_box(const vres_store *s, const vres_domain *d, const force_cfg *c, const double *fpos, size_t nf,
+                     const double *bpos, size_t nb, double lo[3], double hi[3])
+{
+    double lo2[3], hi2[3];
+    vres_cells_bbox(fpos, nf, lo, hi);
+    vres_cells_bbox(bpos, nb, lo2, hi2);
+    const vres_param *dom = vres_params_find(&s->params, "domain_min");
+    int fixed = dom && dom->origin && strcmp(dom->origin, "auto") != 0;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = fmin(lo[a], lo2[a]);
+        hi[a] = fmax(hi[a], hi2[a]);
+        if (c->periodic[a]) {
+            lo[a] = s->domain_min[a] - (fixed ? 0 : 0.5 * d->dp);
+            hi[a] = s->domain_max[a] + (fixed ? 0 : 0.5 * d->dp);
+        }
+    }
+    if (c->dim == 2) lo[1] = hi[1] = 0.5 * (lo[1] + hi[1]);
+}
+
+/* The fluid of one domain in cell order, for the neighbour search. */
+typedef struct fluid_set {
+    vres_cells cells;  /* cell list over the fluid positions */
+    double *pos;       /* [3n] positions in slot order (m) */
+    float *vel;        /* [3n] velocities (m/s) */
+    float *rho;        /* [n] densities (kg/m^3) */
+    float *press;      /* [n] pressures (Pa) */
+    double *mass;      /* [n] masses (kg) */
+} fluid_set;
+
+/* Copy the nf fluid particles fidx[] of d, at positions fpos[3 nf], into f, sorted by cell over
+ * [lo, hi]. 0, or -1 after printing why. */
+static int fluid_gather(fluid_set *f, const vres_domain *d, const force_cfg *c, const size_t *fidx,
+                        const double *fpos, size_t nf, const double lo[3], const double hi[3])
+{
+    if (vres_cells_init(&f->cells, c->dim, 2.0 * d->h, lo, hi, c->periodic) != 0) return -1;
+    size_t out = vres_cells_build(&f->cells, fpos, nf);
+    if (out) vres_warn("%zu fluid particles lie outside the periodic simulation domain and are not counted", out);
+    f->pos = vres_xmalloc(3 * nf * sizeof *f->pos + 1);
+    f->vel = vres_xmalloc(3 * nf * sizeof *f->vel + 1);
+    f->rho = vres_xmalloc(nf * sizeof *f->rho + 1);
+    f->press = vres_xmalloc(nf * sizeof *f->press + 1);
+    f->mass = vres_xmalloc(nf * sizeof *f->mass + 1);
+    for (size_t sl = 0; sl < nf; sl++) {
+        size_t i = fidx[f->cells.perm[sl]];
+        memcpy(&f->pos[3 * sl], &d->pos[3 * i], 3 * sizeof *f->pos);
+        memcpy(&f->vel[3 * sl], &d->vel[3 * i], 3 * sizeof *f->vel);
+        f->rho[sl] = d->rho[i];
+        f->press[sl] = d->press[i];
+        f->mass[sl] = d->mass_p[i];
+    }
+    return 0;
+}
+
+/* Free what fluid_gather allocated. */
+static void fluid_free(fluid_set *f)
+{
+    vres_cells_free(&f->cells);
+    free(f->pos);
+    free(f->vel);
+    free(f->rho);
+    free(f->press);
+    free(f->mass);
+}
+
+/* Force (N; N/m in 2D) on body particle i of d from the fluid f: m_i times the acceleration of
+ * the pressure and viscous pair terms of kernels/sph.h, as the solver would give i if it were
+ * fluid (the fluid-wall viscosity). Returns the number of fluid neighbours within 2h. */
+static size_t particle_force(const vres_domain *d, size_t i, const fluid_set *f, const vres_sph_consts *C,
+                             const force_cfg *c, double out[3])
+{
+    const double xa[3] = {d->pos[3 * i], d->pos[3 * i + 1], d->pos[3 * i + 2]};
+    const double va[3] = {d->vel[3 * i], d->vel[3 * i + 1], d->vel[3 * i + 2]};
+    const double rhoa = d->rho[i], inv_rhoa = 1.0 / rhoa, pa = d->press[i];
+    double acc[3] = {0, 0, 0};
+    size_t nn = 0;
+    vres_cell_range nb[27];
+    int m = vres_cells_neighbours(&f->cells, xa, nb);
+    for (int q = 0; q < m; q++)
+        for (size_t b = nb[q].begin; b < nb[q].end; b++) {
+            double dx[3] = {xa[0] - (f->pos[3 * b] + nb[q].shift[0]), xa[1] - (f->pos[3 * b + 1] + nb[q].shift[1]),
+                            xa[2] - (f->pos[3 * b + 2] + nb[q].shift[2])};
+            double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+            if (r2 >= C->fourh2 || r2 < 1e-18 * C->fourh2) continue; /* the solver's own test */
+            double F = vres_wendland_f(C->k, sqrt(r2));
+            double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
+            double dv[3] = {va[0] - f->vel[3 * b], va[1] - f->vel[3 * b + 1], va[2] - f->vel[3 * b + 2]};
+            double mb = f->mass[b], rhob = f->rho[b], inv_r2eta = 1.0 / (r2 + C->eta2);
+            vres_sph_pair_pressure(mb, pa, f->press[b], inv_rhoa, 1.0 / rhob, fr, acc);
+            if (c->visco_kind == VRES_VISC_LAMINAR)
+                vres_sph_pair_laminar(C->nu_wall, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc);
+            else
+                vres_sph_pair_visc(C, C->alpha_wall, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc);
+            nn++;
+        }
+    double ma = d->mass_p[i];
+    out[0] = ma * acc[0];
+    out[1] = ma * acc[1];
+    out[2] = ma * acc[2];
+    return nn;
+}
+
+/* The kernel and viscosity constants of domain d (the fields the pair terms read). */
+static vres_sph_consts domain_consts(const vres_domain *d, const force_cfg *c)
+{
+    vres_sph_consts C;
+    memset(&C, 0, sizeof C);
+    C.k = vres_wendland_make(c->dim, d->h);
+    C.h = d->h;
+    C.fourh2 = 4.0 * d->h * d->h;
+    C.eta2 = 0.01 * d->h * d->h;
+    C.cs0 = c->cs0;
+    C.alpha_wall = c->visco_kind == VRES_VISC_ARTIFICIAL ? c->visco_wall : 0;
+    C.nu_wall = c->visco_kind == VRES_VISC_LAMINAR ? c->visco_wall : 0;
+    return C;
+}
+
+/* Add the load of domain d's fluid on its particles of the body to L (centre already set). 0,
+ * or -1 after printing why. */
+static int domain_load(const vres_store *s, const vres_domain *d, int mkbound, const force_cfg *c, vres_body_load *L)
+{
+    size_t nf = 0, nb = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        nf += d->type[i] == VRES_FLUID;
+        nb += vres_ptype_is_wall(d->type[i]) && d->mk[i] == mkbound;
+    }
+    if (!nb) return 0;
+    L->ndomains++;
+    L->nbody += nb;
+    if (!nf) return 0; /* a dry body: no force */
+    size_t *fidx = vres_xmalloc(nf * sizeof *fidx), *bidx = vres_xmalloc(nb * sizeof *bidx);
+    double *bpos = vres_xmalloc(3 * nb * sizeof *bpos);
+    nf = nb = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->type[i] == VRES_FLUID) fidx[nf++] = i;
+        else if (vres_ptype_is_wall(d->type[i]) && d->mk[i] == mkbound) {
+            memcpy(&bpos[3 * nb], &d->pos[3 * i], 3 * sizeof *bpos);
+            bidx[nb++] = i;
+        }
+    }
+    double lo[3], hi[3];
+    double *fpos = vres_xmalloc(3 * nf * sizeof *fpos);
+    for (size_t j = 0; j < nf; j++) memcpy(&fpos[3 * j], &d->pos[3 * fidx[j]], 3 * sizeof *fpos);
+    cell_box(s, d, c, fpos, nf, bpos, nb, lo, hi);
+    fluid_set f;
+    memset(&f, 0, sizeof f);
+    int rc = fluid_gather(&f, d, c, fidx, fpos, nf, lo, hi);
+    free(fpos);
+    if (rc == 0) {
+        vres_sph_consts C = domain_consts(d, c);
+        double *fa = vres_xmalloc(3 * nb * sizeof *fa);
+        size_t wet = 0, out = 0;
+#pragma omp parallel for reduction(+ : wet, out) schedule(dynamic, 64) if (nb >= 2048)
+        for (size_t j = 0; j < nb; j++) {
+            int ijk[3];
+            out += !vres_cells_locate(&f.cells, &bpos[3 * j], ijk);
+            wet += particle_force(d, bidx[j], &f, &C, c, &fa[3 * j]) > 0;
+        }
+        if (out)
+            vres_warn("%zu particles of mkbound %d lie outside the periodic simulation domain: their force is not "
+                      "counted", out, mkbound);
+        /* summed in particle order, so the result does not depend on the thread count */
+        for (size_t j = 0; j < nb; j++) {
+            const double *x = &d->pos[3 * bidx[j]], *fj = &fa[3 * j];
+            double r[3] = {x[0] - L->centre[0], x[1] - L->centre[1], x[2] - L->centre[2]};
+            for (int a = 0; a < 3; a++) L->force[a] += fj[a];
+            L->moment[0] += r[1] * fj[2] - r[2] * fj[1];
+            L->moment[1] += r[2] * fj[0] - r[0] * fj[2];
+            L->moment[2] += r[0] * fj[1] - r[1] * fj[0];
+        }
+        L->nwet += wet;
+        free(fa);
+    }
+    fluid_free(&f);
+    free(fidx);
+    free(bidx);
+    free(bpos);
+    return rc;
+}
+
+/* The default centre of the body into L: its /Bodies centre, else its particles' mass-weighted
+ * centroid. */
+static void default_centre(const vres_store *s, int mkbound, vres_body_load *L)
+{
+    for (size_t b = 0; b < s->nbodies; b++)
+        if (s->body[b].mkbound == mkbound) {
+            memcpy(L->centre, s->body[b].center, sizeof L->centre);
+            L->centre_kind = VRES_CENTRE_BODY;
+            return;
+        }
+    double m = 0, mx[3] = {0, 0, 0};
+    for (size_t k = 0; k < s->ndomains; k++) {
+        const vres_domain *d = &s->dom[k];
+        for (size_t i = 0; i < d->n; i++) {
+            if (!vres_ptype_is_wall(d->type[i]) || d->mk[i] != mkbound) continue;
+            m += d->mass_p[i];
+            for (int a = 0; a < 3; a++) mx[a] += d->mass_p[i] * d->pos[3 * i + a];
+        }
+    }
+    for (int a = 0; a < 3; a++) L->centre[a] = m > 0 ? mx[a] / m : 0;
+    L->centre_kind = VRES_CENTRE_CENTROID;
+}
+
+int vres_forces_compute(const vres_store *s, int mkbound, const double *centre, const char *where, vres_body_load *L)
+{
+    memset(L, 0, sizeof *L);
+    char *pre = where ? vres_xasprintf("%s: ", where) : vres_xstrdup("");
+    int rc = 0;
+    force_cfg c;
+    if (!vres_forces_count(s, mkbound)) {
+        char *list = vres_forces_mk_list(s);
+        vres_error("%sno wall particles with mkbound %d; the mkbound values there (type, particles): %s", pre,
+                   mkbound, list);
+        free(list);
+        rc = -1;
+    } else if (read_cfg(s, pre, &c) != 0) {
+        rc = -1;
+    }
+    free(pre);
+    if (rc) return -1;
+    if (centre) {
+        memcpy(L->centre, centre, sizeof L->centre);
+        L->centre_kind = VRES_CENTRE_GIVEN;
+    } else {
+        default_centre(s, mkbound, L);
+    }
+    for (size_t k = 0; k < s->ndomains; k++)
+        if (domain_load(s, &s->dom[k], mkbound, &c, L) != 0) return -1;
+    return 0;
+}
