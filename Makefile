@@ -2,6 +2,8 @@
 #   make            build libvres and every tool into bin/ (CUDA parts too where nvcc exists)
 #   make check      build, then run the whole test suite (unit + tool behaviour + ASan readers)
 #   make bench      throughput table of vres-run (pipelines/bench.sh)
+#   make validate   validation cases at their validation dp (pipelines/validate.mk; long)
+#   make sweep      error-against-run-time sweeps with GNU parallel (pipelines/sweep.mk; long)
 #   make demo       generate the shipped cases and export them to VTK under demo/
 #   make install PREFIX=/usr/local
 # Sources are found by wildcard: lib/*.c|*.cc|*.cu -> libvres, tools/vres-*.c -> bin/vres-*,

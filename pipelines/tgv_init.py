@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""pipelines/tgv_init.py - set the Taylor-Green vortex initial state in a vres store.
+
+    python3 pipelines/tgv_init.py STORE [--U U]
+
+The case format (DualSPHysics' GenCase XML) has no way to give a velocity field that varies in
+space, so cases/taylor_green2d/check writes it into the store vres-gencase made, in place,
+with h5py (the store is plain HDF5, vres-store(5)). For the fluid of the root domain, in the
+x-z plane, with L the side of the periodic square (the fluid's extent plus dp, read from the
+particles) and U the velocity scale (default 1 m/s):
+    u = -U cos(2 pi x/L) sin(2 pi z/L)
+    w =  U sin(2 pi x/L) cos(2 pi z/L)
+    p = -(rho0 U^2 / 4) (cos(4 pi x/L) + cos(4 pi z/L))
+and the density from p by the inverse Tait equation rho = rho0 (1 + p/B)^(1/gamma), with
+rhop0, b and gamma from /Parameters, so that density and pressure agree as vres-run expects.
+(refdata/taylor_green_2d_analytical.csv: Adami, Hu & Adams 2013; PySPH's taylor_green.)
+A line naming this command is put at the top of the store's history. Exit 0 on success, 1 on
+a store that is not a 2-D vres store with fluid, 2 on a usage error.
+"""
+import argparse
+import sys
+import time
+
+import h5py
+import numpy as np
+
+
+def fail(msg):
+    """Print one message naming this tool and exit 1."""
+    print(f"tgv_init.py: {msg}", file=sys.stderr)
+    sys.exit(1)
+
+
+def main():
+    """Outline: read the store's fluid, compute the fields, write them back, note the history."""
+    ap = argparse.ArgumentParser(prog="tgv_init.py", description=__doc__.split("\n")[0])
+    ap.add_argument("store")
+    ap.add_argument("--U", type=float, default=1.0, help="velocity scale (m/s)")
+    args = ap.parse_args()
+    try:
+        f = h5py.File(args.store, "r+")
+    except OSError as e:
+        fail(f"{args.store}: cannot open: {e}")
+    with f:
+        if f.attrs.get("format", b"") not in (b"vres-store", "vres-store") or int(f.attrs.get("dim", 0)) != 2:
+            fail(f"{args.store}: not a 2-D vres store")
+        d = f["Domains/D0"]
+        par = f["Parameters"].attrs
+        rho0, B, gamma = float(par["rhop0"]), float(par["B"]), float(par["gamma"])
+        dp = float(d.attrs["dp"])
+        fluid = d["Type"][:] == 0
+        if not fluid.any():
+            fail(f"{args.store}: no fluid particles")
+        pos = d["Position"][:]
+        x, z = pos[fluid, 0], pos[fluid, 2]
+        L = x.max() - x.min() + dp
+        if abs((z.max() - z.min() + dp) - L) > 1e-6 * L:
+            fail(f"{args.store}: the fluid is not a square")
+        kx, kz = 2 * np.pi * (x - x.min() + dp / 2) / L, 2 * np.pi * (z - z.min() + dp / 2) / L
+        U = args.U
+        vel = d["Velocity"][:]
+        vel[fluid, 0] = -U * np.cos(kx) * np.sin(kz)
+        vel[fluid, 1] = 0.0
+        vel[fluid, 2] = U * np.sin(kx) * np.cos(kz)
+        p = d["Pressure"][:]
+        p[fluid] = -(rho0 * U * U / 4) * (np.cos(2 * kx) + np.cos(2 * kz))
+        rho = d["Density"][:]
+        rho[fluid] = rho0 * (1 + p[fluid] / B) ** (1 / gamma)
+        d["Velocity"][...] = vel
+        d["Pressure"][...] = p
+        d["Density"][...] = rho
+        old = f.attrs.get("history", b"")
+        old = old.decode() if isinstance(old, bytes) else str(old)
+        line = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()) + " " + " ".join(["tgv_init.py"] + sys.argv[1:])
+        f.attrs.create("history", np.bytes_(line + ("\n" + old if old else "")))
+    print(f"tgv_init.py: {args.store}: Taylor-Green vortex set on {int(fluid.sum())} fluid particles, "
+          f"L = {L:g} m, U = {U:g} m/s", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,169 @@
+# pipelines/vreslib.sh - shell functions shared by the validation checks (cases/*/check),
+# the stability checks and the sweep pipeline. Sourced, never run.
+#
+# Stores are read with h5dump and awk, not with vres code, so that a check does not inherit
+# a bug of the tools it checks. Every function prints to stdout and reports problems on
+# stderr as "NAME: ..." where NAME is the calling script's name ($VRES_ME).
+#
+# The check protocol (what cases/*/check print, what pipelines/sweep.mk reads): one
+# "key<TAB>value" line per result, among them
+#   case, reference, dp_m, particles, steps, t_end_s, run_time_s, error, error_def,
+#   tolerance, verdict (pass or FAIL)
+# and exit status 0 (error within tolerance), 1 (error above it, or the run failed),
+# 2 (usage error).
+
+VRES_ROOT=${VRES_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}
+VRES_BIN=${VRES_BIN:-$VRES_ROOT/bin}
+VRES_ME=${VRES_ME:-$(basename "$0")}
+
+# die MSG...: print "NAME: MSG" on stderr and exit 1.
+die() { echo "$VRES_ME: $*" >&2; exit 1; }
+
+# note MSG...: print "NAME: MSG" on stderr (progress and explanations, not results).
+note() { echo "$VRES_ME: $*" >&2; }
+
+# report KEY VALUE: one result line of the check protocol.
+report() { printf '%s\t%s\n' "$1" "$2"; }
+
+# values DATASET FILE: the numbers of an HDF5 dataset, one per line in row-major order, to 15
+# significant digits (h5dump's default %g keeps only 6).
+values() {
+    h5dump -y -w 1 -m '%.15g' -d "$1" "$2" |
+        awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+naif]+,?$/ {gsub(/[ ,]/, ""); print}'
+}
+
+# attr PATH FILE: a scalar numeric attribute (for example /time, /Domains/D0/dp); the first
+# value of an array attribute.
+attr() {
+    h5dump -m '%.15g' -a "$1" "$2" | awk '/\(0\):/ {sub(/.*\(0\): */, ""); sub(/,.*/, ""); print; exit}'
+}
+
+# attrv PATH FILE: every value of a numeric attribute (an array such as gravity), one a line.
+attrv() {
+    h5dump -m '%.15g' -a "$1" "$2" |
+        awk '/DATA \{/ {on = 1; next} on && /\}/ {exit}
+             on {sub(/^ *(\([0-9,]+\): *)?/, ""); n = split($0, v, /, */); for (i = 1; i <= n; i++) if (v[i] != "") print v[i]}'
+}
+
+# param NAME FILE: a numeric parameter of /Parameters (the first value of an array).
+param() { attr "/Parameters/$1" "$2"; }
+
+# gravity_norm FILE: |g| (m/s^2) from the gravity parameter.
+gravity_norm() { attrv /Parameters/gravity "$1" | awk '{s += $1 * $1} END {printf "%.15g\n", sqrt(s)}'; }
+
+# particles FILE: one line per particle of the root domain: type x y z vx vy vz rho p, the
+# numbers of vres-store(5) (type 0 fluid, 2 fixed wall, 3 moving wall...).
+particles() {
+    local f=$1
+    paste <(values /Domains/D0/Type "$f") \
+          <(values /Domains/D0/Position "$f" | paste - - -) \
+          <(values /Domains/D0/Velocity "$f" | paste - - -) \
+          <(values /Domains/D0/Density "$f") \
+          <(values /Domains/D0/Pressure "$f")
+}
+
+# snapshots RUNDIR: the numbered snapshots of a run in time order (not snap_last_good.h5).
+snapshots() { ls "$1"/snap_[0-9]*.h5 2>/dev/null | sort; }
+
+# tsv_last RUNDIR COLUMN: the value of a run.tsv column (by header name) on its last line.
+tsv_last() {
+    awk -F'\t' -v c="$2" 'NR == 1 {sub(/^# */, ""); for (i = 1; i <= NF; i++) if ($i == c) k = i; next}
+                          !/^#/ {v = $k} END {if (!k) exit 1; print v}' "$1/run.tsv"
+}
+
+# run_summary RUNDIR: the cost lines of the check protocol from run.tsv: particles (fluid +
+# wall at the last line), steps, t_end_s and run_time_s (wall-clock seconds of vres-run's time
+# loop, snapshot writing included, as run.tsv's wall_s).
+run_summary() {
+    local d=$1
+    [ -f "$d/run.tsv" ] || die "$d: no run.tsv (not a vres-run directory)"
+    report particles "$(( $(tsv_last "$d" n_fluid) + $(tsv_last "$d" n_wall) ))"
+    report steps "$(tsv_last "$d" step)"
+    report t_end_s "$(tsv_last "$d" time_s)"
+    report run_time_s "$(tsv_last "$d" wall_s)"
+}
+
+# run_complete RUNDIR: true when the run reached its TimeMax (the last snapshot's time is
+# within one time step of the TimeMax it records); otherwise says so on stderr. A run that was
+# stopped (killed, exit 3) must not be judged as if it had finished.
+run_complete() {
+    local last tmax t dt
+    last=$(snapshots "$1" | tail -1)
+    [ -n "$last" ] || { note "$1: no snapshots"; return 1; }
+    tmax=$(param TimeMax "$last") && t=$(attr /time "$last") || { note "$last: no TimeMax or time"; return 1; }
+    dt=$(tsv_last "$1" dt_s)
+    awk -v t="$t" -v m="$tmax" -v dt="$dt" 'BEGIN {exit !(t >= m - dt - 1e-12 * m)}' ||
+        { note "$1: the run stopped at t = $t s, before its TimeMax $tmax s"; return 1; }
+}
+
+# check_usage TEXT: print the usage of a check and exit 2.
+check_usage() { printf 'usage: %s\n' "$1" >&2; exit 2; }
+
+# check_args SYNOPSIS "$@": parse the options common to every check:
+#   [--dp DP] [--threads N] [--tmax T] [--set NAME=VALUE]... [-o RUNDIR] [RUNDIR]
+# Sets DP, THREADS, TMAX, SETS (the --set options, passed on to vres-gencase: a variable,
+# constant or parameter of the case, e.g. --set Boundary=2), RUNDIR (a run directory to
+# read, or where to run), RUN_NEEDED
+# (1 when RUNDIR holds no run.tsv yet, so the check must run the case) and WORK (a temporary
+# directory for intermediate files, removed at exit). Without a RUNDIR the run goes to WORK.
+check_args() {
+    local syn=$1 given=0; shift
+    DP="" THREADS="" TMAX="" RUNDIR="" RUN_NEEDED=0 SETS=()
+    while [ $# -gt 0 ]; do
+        case $1 in
+            --set) [ $# -ge 2 ] || check_usage "$syn"; SETS+=(--set "$2"); shift 2 ;;
+            --dp) [ $# -ge 2 ] || check_usage "$syn"; DP=$2; shift 2 ;;
+            --threads) [ $# -ge 2 ] || check_usage "$syn"; THREADS=$2; shift 2 ;;
+            --tmax) [ $# -ge 2 ] || check_usage "$syn"; TMAX=$2; shift 2 ;;
+            -o) [ -z "$RUNDIR" ] && [ $# -ge 2 ] || check_usage "$syn"; RUNDIR=$2; shift 2 ;;
+            -h|--help) printf 'usage: %s\n' "$syn"; exit 0 ;;
+            -*) note "unknown option $1"; check_usage "$syn" ;;
+            *) [ -z "$RUNDIR" ] || check_usage "$syn"; RUNDIR=$1; given=1; shift ;;
+        esac
+    done
+    # a run directory given to be read must hold a run; -o names one to make
+    if [ "$given" = 1 ] && [ ! -f "$RUNDIR/run.tsv" ]; then
+        die "$RUNDIR: no run.tsv, not a vres-run directory (-o RUNDIR runs the case there)"
+    fi
+    WORK=$(mktemp -d "${TMPDIR:-/tmp}/vres-check.XXXXXX") || die "cannot make a temporary directory"
+    trap 'rm -rf "$WORK"' EXIT
+    [ -n "$RUNDIR" ] || RUNDIR=$WORK/run
+    [ -f "$RUNDIR/run.tsv" ] || RUN_NEEDED=1
+    if [ "$RUN_NEEDED" = 0 ] && [ -n "$DP$TMAX${SETS[*]}" ]; then
+        note "$RUNDIR already holds a run: --dp, --tmax and --set are ignored"
+    fi
+}
+
+# run_case XML [GENCASE OPTION]...: generate the case at $DP (the case's own dp when empty),
+# with the --set options of $SETS,
+# and run it into $RUNDIR with $THREADS threads (OpenMP's choice when empty) to $TMAX (the
+# case's TimeMax when empty). Sets RUN_STATUS to vres-run's exit status; keeps its stderr in
+# $WORK/run.log (shown when the run fails) and, when the run directory was made, its stderr
+# and exit status there too as vres-run.log and vres-run.status, so that a later check of the
+# directory alone (a stability check reading the diagnosis) finds them.
+run_case() {
+    local xml=$1; shift
+    "$VRES_BIN/vres-gencase" -q ${DP:+--dp "$DP"} "${SETS[@]}" "$@" "$xml" -o "$WORK/case.h5" ||
+        die "vres-gencase failed on $xml"
+    note "running $(basename "$xml") at dp ${DP:-as in the case} into $RUNDIR"
+    "$VRES_BIN/vres-run" -q ${THREADS:+--threads "$THREADS"} ${TMAX:+--tmax "$TMAX"} \
+        "$WORK/case.h5" -o "$RUNDIR" 2>"$WORK/run.log"
+    RUN_STATUS=$?
+    rm -f "$WORK/case.h5"
+    if [ -d "$RUNDIR" ]; then
+        cp "$WORK/run.log" "$RUNDIR/vres-run.log"
+        echo "$RUN_STATUS" >"$RUNDIR/vres-run.status"
+    fi
+    [ "$RUN_STATUS" -eq 0 ] || sed "s|^|$VRES_ME: |" "$WORK/run.log" >&2
+    return 0
+}
+
+# verdict ERROR TOLERANCE: report the tolerance and the verdict; exit 1 when ERROR is above
+# TOLERANCE or is not a finite number, 0 otherwise.
+verdict() {
+    report tolerance "$2"
+    if awk -v e="$1" -v t="$2" 'BEGIN {exit !(e == e + 0 && e <= t && e >= -t)}'; then
+        report verdict pass; exit 0
+    fi
+    report verdict FAIL; exit 1
+}
