@@ -351,6 +351,226 @@ VRES_SPH_VARIANTS(vres_sph_laminar_, VRES_VISC_LAMINAR)   /* vres_sph_laminar_pl
 VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_, VRES_VISC_ARTIFICIAL)         /* vres_sph_shift_plain ... */
 VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_laminar_, VRES_VISC_LAMINAR)    /* vres_sph_shift_laminar_plain ... */
 
+/* The 2D interaction (x-z plane) reads these arrays, all in cell order (slot s is particle
+ * s): the positions and velocities split by axis so that the neighbour loop streams only what
+ * it uses (no y), and the reciprocal density computed once per particle, not once per pair. */
+typedef struct vres_sph_2d {
+    const double *x;       /* [n] x positions (m) */
+    const double *z;       /* [n] z positions (m) */
+    const float *vx;       /* [n] x velocities (m/s) */
+    const float *vz;       /* [n] z velocities (m/s) */
+    const float *rho;      /* [n] densities (kg/m^3) */
+    const float *press;    /* [n] pressures (Pa) */
+    const double *inv_rho; /* [n] 1/rho, exactly 1.0 / (double)rho (m^3/kg) */
+    const double *mass;    /* [n] masses (kg) */
+    const uint8_t *type;   /* [n] particle types (store.h; 0 fluid) */
+} vres_sph_2d;
+
+/* Candidates a 2D particle keeps per pass over its neighbour ranges (more are done in turns). */
+#define VRES_SPH_LIST 128
+
+/* vres_sph_interact for a 2D domain (x-z plane, y ignored: in 2D every y offset and y
+ * velocity difference is zero, so the sums below are those of vres_sph_interact term for
+ * term, in the same order, and give the same numbers). Particle a's neighbours lie in the
+ * ranges nb[0..m) (vres_cells_rows2d of its cell, m = 0 for a particle outside the grid).
+ * First a branch-free pass keeps the candidates inside the support (the cells hold about three
+ * times as many as the kernel reaches, and a per-candidate branch is mispredicted about as
+ * often as it is taken), then the pair physics runs over the kept ones only. */
+VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const vres_cell_range *nb, int m,
+                                                               const vres_sph_2d *P, const vres_sph_consts *C,
+                                                               double *ace, double *ar, double *visc,
+                                                               double *shiftv, const int ddt, const int walls,
+                                                               const int viscosity, const int shift)
+{
+    const int fluid_a = !walls || P->type[a] == 0;
+    const double xa = P->x[a], za = P->z[a], vxa = P->vx[a], vza = P->vz[a];
+    const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
+    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2;
+    double accx = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcz = 0, divr = 0;
+    int noshift = 0;
+    double ldx[VRES_SPH_LIST], ldz[VRES_SPH_LIST], lr2[VRES_SPH_LIST]; /* x_ab, z_ab, r^2 of a chunk's candidates (m, m^2) */
+    uint32_t lb[VRES_SPH_LIST]; /* slots of the kept candidates (a domain of 2^32 particles would need 400 GB) */
+    uint8_t lk[VRES_SPH_LIST];  /* their index among the chunk's candidates */
+    int c = 0;
+    size_t b0 = m ? nb[0].begin : 0;
+    while (c < m) {
+        int nc = 0, nl = 0; /* candidates in this chunk, kept among them */
+        for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
+            const double sx = nb[c].shift[0], sz = nb[c].shift[2];
+            size_t e = nb[c].end;
+            if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
+            const int len = (int)(e - b0);
+            const double *xb = P->x + b0, *zb = P->z + b0;
+            double *cdx = ldx + nc, *cdz = ldz + nc, *cr2 = lr2 + nc;
+            /* distances of the whole run at once (vector instructions), then the kept slots */
+#pragma omp simd
+            for (int j = 0; j < len; j++) {
+                double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
+                cdx[j] = dx, cdz[j] = dz, cr2[j] = dx * dx + dz * dz;
+            }
+            for (int j = 0; j < len; j++) {
+                lb[nl] = (uint32_t)(b0 + (size_t)j), lk[nl] = (uint8_t)(nc + j);
+                nl += cr2[j] < fourh2 && cr2[j] >= tiny; /* inside the support, not a itself */
+            }
+            nc += len;
+            b0 = e;
+            if (e < nb[c].end) break; /* the chunk is full: use it, then go on from b0 */
+        }
+        for (int j = 0; j < nl; j++) {
+            const size_t b = lb[j];
+            const int wall_b = walls && P->type[b] != 0;
+            if (!fluid_a && wall_b) continue; /* DBC: walls do not interact with walls */
+            const double dx = ldx[lk[j]], dz = ldz[lk[j]], r2 = lr2[lk[j]];
+            const double F = vres_wendland_f(C->k, sqrt(r2));
+            const double frx = F * dx, frz = F * dz;
+            const double dvx = vxa - P->vx[b], dvz = vza - P->vz[b];
+            const double mb = P->mass[b], rhob = P->rho[b], inv_r2eta = 1.0 / (r2 + C->eta2);
+            arp += mb * (dvx * frx + dvz * frz);
+            if (!fluid_a) {
+                double rate = (dx * dvx + dz * dvz) * inv_r2eta;
+                vmax = rate > vmax ? rate : vmax;
+                continue;
+            }
+            const double inv_rhob = P->inv_rho[b];
+            /* vres_sph_pair_pressure */
+            const double prs = mb * (pa + P->press[b]) * inv_rhoa * inv_rhob;
+            accx -= prs * frx;
+            accz -= prs * frz;
+            const double dot = dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
+            if (viscosity == VRES_VISC_LAMINAR) { /* vres_sph_pair_laminar */
+                const double xf = dx * frx + dz * frz;
+                const double vt = mb * 4.0 * (wall_b ? C->nu_wall : C->nu) * xf * inv_r2eta / (rhoa + rhob);
+                accx += vt * dvx;
+                accz += vt * dvz;
+            } else { /* vres_sph_pair_visc, as a select rather than a branch */
+                double pi = -(wall_b ? C->alpha_wall : C->alpha) * C->cs0 * C->h * dot_rr2 / (0.5 * (rhoa + rhob)) * mb;
+                pi = dot < 0 ? pi : 0.0;
+                accx -= pi * frx;
+                accz -= pi * frz;
+            }
+            vmax = dot_rr2 > vmax ? dot_rr2 : vmax;
+            if (ddt != VRES_DDT_NONE && !wall_b) { /* vres_sph_pair_ddt */
+                double drho = rhoa - rhob;
+                if (ddt == VRES_DDT_FOURTAKAS) {
+                    double x = -C->rho0_over_B * (C->g[0] * dx + C->g[2] * dz), e = C->inv_gamma;
+                    drho += C->rho0 * x * e * (1.0 + x * (e - 1.0) / 2.0 * (1.0 + x * (e - 2.0) / 3.0));
+                }
+                diff += C->ddt_khc * drho * F * r2 * inv_r2eta * mb * inv_rhob;
+            }
+            if (shift) {
+                double vol = mb * inv_rhob;
+                if (wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && P->type[b] == 2))) noshift = 1;
+                gcx += vol * frx;
+                gcz += vol * frz;
+                divr -= vol * (dx * frx + dz * frz);
+            }
+        }
+    }
+    if (shift && fluid_a) {
+        shiftv[4 * a] = noshift ? NAN : gcx;
+        shiftv[4 * a + 1] = 0;
+        shiftv[4 * a + 2] = gcz;
+        shiftv[4 * a + 3] = divr;
+    }
+    ar[a] = arp + diff;
+    visc[a] = vmax;
+    ace[3 * a] = fluid_a ? accx + C->g[0] : 0.0;
+    ace[3 * a + 1] = fluid_a ? C->g[1] : 0.0;
+    ace[3 * a + 2] = fluid_a ? accz + C->g[2] : 0.0;
+}
+
+/* vres_sph_interact2d over the particles of cell `cell` of g (cell == g->ncells: the slots
+ * outside the grid, which have no neighbours), the neighbour ranges found once for the cell. */
+VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vres_cells *g, const vres_sph_2d *P,
+                                                           const vres_sph_consts *C, double *ace, double *ar,
+                                                           double *visc, double *shiftv, const int ddt,
+                                                           const int walls, const int viscosity, const int shift)
+{
+    vres_cell_range nb[9];
+    size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
+    int m = 0;
+    if (g->begin[cell] == end) return;
+    if (cell < g->ncells) m = vres_cells_rows2d(g, (int)(cell % (size_t)g->nc[0]), (int)(cell / (size_t)g->nc[0]), nb);
+    for (size_t a = g->begin[cell]; a < end; a++)
+        vres_sph_interact2d(a, nb, m, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift);
+}
+
+/* VRES_CELL_LOOP(name, fn, (params), (args)): VRES_PARTICLE_LOOP over cells. On the CPU the
+ * cells are dealt out in small chunks as threads become free, because cells differ in how many
+ * particles they hold (a static split of a dam break gives one thread the water, the other the
+ * air); which thread does a cell changes nothing in its sums. */
+#ifdef __CUDACC__
+#define VRES_CELL_LOOP(name, fn, params, args) VRES_PARTICLE_LOOP(name, fn, params, args)
+#else
+#define VRES_CELL_LOOP(name, fn, params, args)                                           \
+    static inline void name##_cpu(size_t n, VRES_UNPAREN params)                         \
+    {                                                                                    \
+        _Pragma("omp parallel for schedule(dynamic, 16)")                                \
+        for (size_t i = 0; i < n; i++) fn(i, VRES_UNPAREN args);                         \
+    }
+#endif
+
+/* VRES_SPH_VARIANT2D(name, ddt, walls, visc, shift) defines name_one (one cell, options fixed)
+ * and its loops name_cpu / name_cuda over cells 0..ncells (n = g->ncells + 1); shiftv is
+ * written only by the shifting variants (NULL for the others). */
+#define VRES_SPH_VARIANT2D(name, ddt, walls, viscosity, shift)                                                    \
+    VRES_HD static inline void name##_one(size_t cell, const vres_cells *g, const vres_sph_2d *P,                 \
+                                          const vres_sph_consts *C, double *ace, double *ar, double *visc,        \
+                                          double *shiftv)                                                         \
+    {                                                                                                             \
+        vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift);                      \
+    }                                                                                                             \
+    VRES_CELL_LOOP(name, name##_one,                                                                          \
+                       (const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C, double *ace,         \
+                        double *ar, double *visc, double *shiftv),                                                \
+                       (g, P, C, ace, ar, visc, shiftv))
+
+/* The twelve 2D variants of one viscosity kind and shifting choice (walls x density diffusion). */
+#define VRES_SPH_VARIANTS2D(prefix, viscosity, shift)                                       \
+    VRES_SPH_VARIANT2D(prefix##plain, VRES_DDT_NONE, 0, viscosity, shift)                   \
+    VRES_SPH_VARIANT2D(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity, shift)              \
+    VRES_SPH_VARIANT2D(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity, shift)          \
+    VRES_SPH_VARIANT2D(prefix##dbc, VRES_DDT_NONE, 1, viscosity, shift)                     \
+    VRES_SPH_VARIANT2D(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity, shift)          \
+    VRES_SPH_VARIANT2D(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity, shift)
+
+VRES_SPH_VARIANTS2D(vres_sph2d_, VRES_VISC_ARTIFICIAL, 0)               /* vres_sph2d_plain ... */
+VRES_SPH_VARIANTS2D(vres_sph2d_laminar_, VRES_VISC_LAMINAR, 0)          /* vres_sph2d_laminar_plain ... */
+VRES_SPH_VARIANTS2D(vres_sph2d_shift_, VRES_VISC_ARTIFICIAL, 1)         /* vres_sph2d_shift_plain ... */
+VRES_SPH_VARIANTS2D(vres_sph2d_shift_laminar_, VRES_VISC_LAMINAR, 1)    /* vres_sph2d_shift_laminar_plain ... */
+
+/* The general 2D loop: every option read at run time (a benchmarking aid that shows what the
+ * specialised variants save; vres-run uses it with VRES_LOOP=general). */
+VRES_HD static inline void vres_sph2d_general_one(size_t cell, const vres_cells *g, const vres_sph_2d *P,
+                                                  const vres_sph_consts *C, double *ace, double *ar, double *visc,
+                                                  double *shiftv, int ddt, int walls, int viscosity, int shift)
+{
+    vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift);
+}
+
+/* vres_sph2d_general_cpu / _cuda (n = ncells + 1, g, P, C, ace, ar, visc, shiftv, ddt, walls, visc kind, shift). */
+VRES_CELL_LOOP(vres_sph2d_general, vres_sph2d_general_one,
+                   (const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C, double *ace, double *ar,
+                    double *visc, double *shiftv, int ddt, int walls, int viscosity, int shift),
+                   (g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift))
+
+/* The general 3D loop (vres_sph_interact with every option read at run time), as above. */
+VRES_HD static inline void vres_sph_general_one(size_t a, const vres_cells *g, const double *pos, const float *vel,
+                                                const float *rho, const float *press, const double *mass,
+                                                const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
+                                                double *visc, double *shiftv, int ddt, int walls, int viscosity,
+                                                int shift)
+{
+    vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, shift, shiftv);
+}
+
+/* vres_sph_general_cpu / _cuda (n, g, pos, ..., visc, shiftv, ddt, walls, visc kind, shift). */
+VRES_PARTICLE_LOOP(vres_sph_general, vres_sph_general_one,
+                   (const vres_cells *g, const double *pos, const float *vel, const float *rho, const float *press,
+                    const double *mass, const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
+                    double *visc, double *shiftv, int ddt, int walls, int viscosity, int shift),
+                   (g, pos, vel, rho, press, mass, type, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift))
+
 /* The shifting displacement (m) of fluid particle i for a step dt (s) at speed |v_i|, into
  * shiftv[4i..4i+2] (DualSPHysics' JSphShifting): dr = A h |v| dt grad C, A = ShiftCoef
  * (negative: towards lower concentration), scaled by (div r - TFS)/(dim - TFS) when TFS > 0

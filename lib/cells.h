@@ -146,6 +146,49 @@ VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const doubl
     return m;
 }
 
+/* The neighbour ranges of 2D cell (i, k) (x index i, z index k), for every particle in it:
+ * for each of the rows k-1, k, k+1 the cells i-1, i, i+1, with the cells of a row that lie
+ * side by side in memory (no periodic wrap between them) merged into one range, so a row is
+ * one contiguous run of slots. Ranges come in the order vres_cells_neighbours gives their
+ * cells (so sums over them add in the same order); empty cells are left out. Returns how
+ * many, at most 9, into r. Only for dim 2 and a cell inside the grid. */
+VRES_HD static inline int vres_cells_rows2d(const vres_cells *g, int i, int k, vres_cell_range r[9])
+{
+    int m = 0, nx = g->nc[0], nz = g->nc[2];
+    for (int oz = -1; oz <= 1; oz++) {
+        int kz = k + oz;
+        double sz = 0;
+        if (kz < 0 || kz >= nz) {
+            if (!g->periodic[2]) continue;
+            sz = kz < 0 ? -g->period[2] : g->period[2];
+            kz = kz < 0 ? kz + nz : kz - nz;
+        }
+        const size_t *row = g->begin + (size_t)kz * (size_t)nx;
+        for (int ox = -1; ox <= 1; ox++) {
+            int kx = i + ox;
+            double sx = 0;
+            if (kx < 0 || kx >= nx) {
+                if (!g->periodic[0]) continue;
+                sx = kx < 0 ? -g->period[0] : g->period[0];
+                kx = kx < 0 ? kx + nx : kx - nx;
+            }
+            size_t b = row[kx], e = row[kx + 1];
+            if (b == e) continue;
+            if (m && r[m - 1].end == b && r[m - 1].shift[0] == sx && r[m - 1].shift[2] == sz) {
+                r[m - 1].end = e; /* the next slots in memory, same image: one range */
+                continue;
+            }
+            r[m].begin = b;
+            r[m].end = e;
+            r[m].shift[0] = sx;
+            r[m].shift[1] = 0;
+            r[m].shift[2] = sz;
+            m++;
+        }
+    }
+    return m;
+}
+
 #ifdef __cplusplus
 }
 #endif

@@ -73,6 +73,10 @@ typedef struct run_work {
     float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
     float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
     double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
+    double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
+    float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
+    double *inv_rho;      /* [n] 2D: 1/density of each particle (m^3/kg) */
+    int general;          /* 1: run the general loop (every option tested at run time; VRES_LOOP=general) */
     double t_start;       /* time of posref (s) */
     vres_motion_state *mv0; /* [nbodies] each body's motion at t_start, NULL without moving walls */
     vres_motion_state *mv;  /* [nbodies] work: the motion from t_start to the time asked */
@@ -372,6 +376,27 @@ static interact_shift_fn pick_interaction_shift(const run_cfg *c)
     return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
 }
 
+/* One 2D interaction loop variant (kernels/sph.h: vres_sph2d_*), over n = ncells + 1 cells. */
+typedef void (*interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
+                              double *ace, double *ar, double *visc, double *shiftv);
+
+/* The 2D variant for this scene, with the shifting sums when shift is 1. */
+static interact2d_fn pick_interaction2d(const run_cfg *c, int shift)
+{
+    static const interact2d_fn table[2][2][2][3] = {
+        {{{vres_sph2d_plain_cpu, vres_sph2d_molteni_cpu, vres_sph2d_fourtakas_cpu},
+          {vres_sph2d_dbc_cpu, vres_sph2d_dbc_molteni_cpu, vres_sph2d_dbc_fourtakas_cpu}},
+         {{vres_sph2d_laminar_plain_cpu, vres_sph2d_laminar_molteni_cpu, vres_sph2d_laminar_fourtakas_cpu},
+          {vres_sph2d_laminar_dbc_cpu, vres_sph2d_laminar_dbc_molteni_cpu, vres_sph2d_laminar_dbc_fourtakas_cpu}}},
+        {{{vres_sph2d_shift_plain_cpu, vres_sph2d_shift_molteni_cpu, vres_sph2d_shift_fourtakas_cpu},
+          {vres_sph2d_shift_dbc_cpu, vres_sph2d_shift_dbc_molteni_cpu, vres_sph2d_shift_dbc_fourtakas_cpu}},
+         {{vres_sph2d_shift_laminar_plain_cpu, vres_sph2d_shift_laminar_molteni_cpu,
+           vres_sph2d_shift_laminar_fourtakas_cpu},
+          {vres_sph2d_shift_laminar_dbc_cpu, vres_sph2d_shift_laminar_dbc_molteni_cpu,
+           vres_sph2d_shift_laminar_dbc_fourtakas_cpu}}}};
+    return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
 /* Make the run directory (and parents) and check it holds no earlier run. 0, or -1 after
  * printing why. Nothing is created when the path cannot be a directory. */
 static int prepare_rundir(const char *dir)
@@ -430,7 +455,28 @@ static double forces(run_work *w, vres_domain *d, interact_fn interact, interact
     if (c->mdbc && c->nnormal)
         vres_mdbc_cpu(d->n, &w->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, *C, c->dim);
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
-    if (interact_shift)
+    int shift = interact_shift != NULL;
+    if (c->dim == 2) {
+        size_t n = d->n;
+        double *x = w->x2d, *z = w->x2d + n, *ir = w->inv_rho;
+        float *vx = w->v2d, *vz = w->v2d + n;
+        const double *pos = d->pos;
+        const float *vel = d->vel, *rho = d->rho;
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            x[i] = pos[3 * i], z[i] = pos[3 * i + 2];
+            vx[i] = vel[3 * i], vz[i] = vel[3 * i + 2];
+            ir[i] = 1.0 / rho[i];
+        }
+        vres_sph_2d P = {x, z, vx, vz, d->rho, d->press, ir, d->mass_p, d->type};
+        if (w->general)
+            vres_sph2d_general_cpu(w->cells.ncells + 1, &w->cells, &P, C, w->ace, w->ar, w->visc, w->shiftv, c->ddt,
+                                   c->nwall > 0, c->visco_kind, shift);
+        else pick_interaction2d(c, shift)(w->cells.ncells + 1, &w->cells, &P, C, w->ace, w->ar, w->visc, w->shiftv);
+    } else if (w->general)
+        vres_sph_general_cpu(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar,
+                             w->visc, w->shiftv, c->ddt, c->nwall > 0, c->visco_kind, shift);
+    else if (interact_shift)
         interact_shift(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar,
                        w->visc, w->shiftv);
     else interact(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar, w->visc);
@@ -628,6 +674,16 @@ static int work_init(run_work *w, const vres_store *s, const run_cfg *c)
     w->ar = vres_xcalloc(n + 1, sizeof *w->ar);
     w->visc = vres_xcalloc(n + 1, sizeof *w->visc);
     if (c->shift) w->shiftv = vres_xcalloc(4 * n + 1, sizeof *w->shiftv);
+    if (c->dim == 2) {
+        w->x2d = vres_xmalloc(2 * n * sizeof *w->x2d + 1);
+        w->v2d = vres_xmalloc(2 * n * sizeof *w->v2d + 1);
+        w->inv_rho = vres_xmalloc(n * sizeof *w->inv_rho + 1);
+    }
+    const char *loop = getenv("VRES_LOOP");
+    w->general = loop && !strcmp(loop, "general");
+    if (loop && !w->general && strcmp(loop, "specialised"))
+        vres_warn("VRES_LOOP=%s not known (general or specialised): using the specialised loop", loop);
+    if (w->general) vres_info("VRES_LOOP=general: the general interaction loop (options tested at run time)");
     if (c->verlet) { /* the previous step of the first is the start itself, as DualSPHysics */
         w->velm1 = vres_xmalloc(3 * n * sizeof *w->velm1 + 1);
         w->rhom1 = vres_xmalloc(n * sizeof *w->rhom1 + 1);
@@ -657,6 +713,9 @@ static void work_free(run_work *w)
     free(w->visc);
     free(w->posref);
     free(w->shiftv);
+    free(w->x2d);
+    free(w->v2d);
+    free(w->inv_rho);
     free(w->velm1);
     free(w->rhom1);
     free(w->mv0);
