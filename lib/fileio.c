@@ -112,6 +112,22 @@ int vres_write_stdout(const void *buf, size_t len)
     return 0;
 }
 
+int vres_write_text(const char *path, const char *text, size_t len)
+{
+    if (!path || strcmp(path, "-") == 0) return vres_write_stdout(text, len);
+    vres_outfile of;
+    if (vres_out_begin(&of, path) != 0) return -1;
+    FILE *f = fopen(of.tmp, "w");
+    int ok = f && fwrite(text, 1, len, f) == len;
+    if (f && fclose(f) != 0) ok = 0;
+    if (!ok) {
+        vres_error("%s: cannot write", path);
+        vres_out_abort(&of);
+        return -1;
+    }
+    return vres_out_commit(&of);
+}
+
 int vres_mkdirs(const char *path)
 {
     char *p = vres_xstrdup(path);

@@ -25,6 +25,9 @@ void vres_out_abort(vres_outfile *o);
 int vres_read_all(const char *path, unsigned char **buf, size_t *len);
 /* Write a buffer to stdout completely. Returns 0, or -1 after printing why. */
 int vres_write_stdout(const void *buf, size_t len);
+/* Write a finished text to stdout (path NULL or "-") or atomically to the file path.
+ * Returns 0, or -1 after printing why (naming path). */
+int vres_write_text(const char *path, const char *text, size_t len);
 /* Create a directory and its parents (like mkdir -p). Returns 0, or -1 after printing why. */
 int vres_mkdirs(const char *path);
 

@@ -311,23 +311,6 @@ static void write_rows(FILE *o, const request *r, const row *rows, size_t n)
     }
 }
 
-/* Send the finished table to stdout or, atomically, to the -o file. Returns 0 or 1. */
-static int emit(const char *text, size_t len, const char *output)
-{
-    if (!output || strcmp(output, "-") == 0) return vres_write_stdout(text, len) == 0 ? 0 : 1;
-    vres_outfile of;
-    if (vres_out_begin(&of, output) != 0) return 1;
-    FILE *f = fopen(of.tmp, "w");
-    int ok = f && fwrite(text, 1, len, f) == len;
-    if (f && fclose(f) != 0) ok = 0;
-    if (!ok) {
-        vres_error("%s: cannot write", output);
-        vres_out_abort(&of);
-        return 1;
-    }
-    return vres_out_commit(&of) == 0 ? 0 : 1;
-}
-
 /* Parse the request, list the snapshots, compute each row, add the spectrum, write. */
 int main(int argc, char **argv)
 {
@@ -345,7 +328,7 @@ int main(int argc, char **argv)
     if (rc == 0) write_rows(o, &r, rows, n);
     if (rc == 0 && r.spectrum >= 0 && spectrum(o, &r, rows, n) != 0) rc = 1;
     fclose(o);
-    if (rc == 0) rc = emit(text, len, cli.output);
+    if (rc == 0) rc = vres_write_text(cli.output, text, len) == 0 ? 0 : 1;
     free(text);
     free(rows);
     for (size_t i = 0; i < n; i++) free(in[i].path);

@@ -317,23 +317,6 @@ static int info_run(FILE *o, const char *dir, const show *sh)
     return rc;
 }
 
-/* Send the finished report to stdout or, atomically, to the -o file. Returns 0 or 1. */
-static int emit(const char *text, size_t len, const char *output)
-{
-    if (!output || strcmp(output, "-") == 0) return vres_write_stdout(text, len) == 0 ? 0 : 1;
-    vres_outfile of;
-    if (vres_out_begin(&of, output) != 0) return 1;
-    FILE *f = fopen(of.tmp, "w");
-    int ok = f && fwrite(text, 1, len, f) == len;
-    if (f && fclose(f) != 0) ok = 0;
-    if (!ok) {
-        vres_error("%s: cannot write", output);
-        vres_out_abort(&of);
-        return 1;
-    }
-    return vres_out_commit(&of) == 0 ? 0 : 1;
-}
-
 int main(int argc, char **argv)
 {
     vres_cli c;
@@ -347,7 +330,7 @@ int main(int argc, char **argv)
     int rc = strcmp(path, "-") != 0 && stat(path, &st) == 0 && S_ISDIR(st.st_mode) ? info_run(o, path, &sh)
                                                                                    : info_store(o, path, &sh);
     fclose(o);
-    if (rc == 0) rc = emit(text, len, c.output);
+    if (rc == 0) rc = vres_write_text(c.output, text, len) == 0 ? 0 : 1;
     free(text);
     vres_cli_free(&c);
     return rc;
