@@ -601,6 +601,28 @@ static int output(vres_store *s, const run_cfg *c, const char *dir, FILE *tsv, r
     return 0;
 }
 
+/* The progress line on a terminal: rewritten in place at most twice a second while the run
+ * goes on (stderr only, never with -q or when stderr is not a terminal); done = 1 ends it. */
+static void progress(const run_cfg *c, const run_clock *clk, double t0, double t, long step, double dt, int done)
+{
+    static double last;        /* wall time of the last line printed (s) */
+    static int shown;          /* 1 once a line is on the screen */
+    if (vres_verbosity < 0 || !isatty(2)) return;
+    double now = wall_now();
+    if (done) {
+        if (shown) fputc('\n', stderr);
+        shown = 0;
+        return;
+    }
+    if (now - last < 0.5) return;
+    last = now;
+    double frac = c->tmax > t0 ? (t - t0) / (c->tmax - t0) : 1, spent = now - clk->start;
+    double eta = frac > 0 ? spent * (1 - frac) / frac : 0;
+    fprintf(stderr, "\r%s: t %.5g of %.5g s (%.1f%%), step %ld, dt %.3g s, %.0f s left   ", vres_progname, t,
+            c->tmax, 100 * frac, step, dt, eta);
+    shown = 1;
+}
+
 /* Stop after a blow-up: put the step-start state (the last good one) back, write it as
  * snap_last_good.h5 and say where. Returns VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
 static int stop_unstable(vres_store *s, run_work *w, const run_cfg *c, const char *dir, double t0, long step0)
@@ -836,11 +858,13 @@ static int time_loop(vres_store *s, const run_cfg *c, const char *dir, FILE *tsv
         }
         t += dt;
         step++;
+        progress(c, &clk, s->time, t, step, dt, 0);
         if (t >= next_out * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12)) {
             if (output(s, c, dir, tsv, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
             while (next_out <= t * (1 + 1e-9)) next_out += c->tout;
         }
     }
+    progress(c, &clk, s->time, t, step, dt, 1);
     if (rc == VRES_RUN_OK)
         vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s", t, step - step_start,
                   wall_now() - clk.start, clk.nout, dir);
