@@ -21,6 +21,13 @@ ERR=$T/stderr
 STATUS=0
 
 ok() { echo "ok - $*"; }
+
+# values DATASET FILE: a store dataset's numbers, one per line, at full double precision, read
+# with h5dump (not with vres, so a test does not trust the code it tests to read its output).
+values() {
+    h5dump -m '%.17g' -y -w 1 -d "$1" "$2" |
+        awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'
+}
 notok() { echo "not ok - $*"; }
 
 # run CMD...: run a command, keeping stdout in $OUT, stderr in $ERR and the exit code in $STATUS.

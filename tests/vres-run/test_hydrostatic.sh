@@ -7,8 +7,6 @@ source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
 H=0.5 G=9.81 RHO0=1000 DP=0.02
 
-# values DATASET FILE: the dataset's numbers, one per line (h5dump, not vres, reads the file)
-values() { h5dump -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
 
 expect 0 "gencase the still-water tank" "$BIN/vres-gencase" "$CASES/hydrostatic2d/hydrostatic2d_Def.xml" -o "$T/tank.h5"
 mass0=$(paste <(values /Domains/D0/Type "$T/tank.h5") <(values /Domains/D0/Mass "$T/tank.h5") |

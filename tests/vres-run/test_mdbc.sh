@@ -17,7 +17,6 @@
 #    0.24 s, of which this window holds one (measured +1.2%).
 source "$(dirname "$0")/../harness.sh"
 H=0.5 G=9.81 RHO0=1000 DP=0.02
-values() { h5dump -m '%.17g' -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
 
 expect 0 "gencase the tank with Boundary=2" "$BIN/vres-gencase" --set Boundary=2 "$CASES/hydrostatic2d/hydrostatic2d_Def.xml" -o "$T/tank.h5"
 expect 0 "run 0.3 s of still water with mDBC" "$BIN/vres-run" --threads 1 --tmax 0.3 --tout 0.008 "$T/tank.h5" -o "$T/run"

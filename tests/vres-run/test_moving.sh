@@ -8,7 +8,6 @@
 # are double precision and set from the motion's closed form each half step, so they must
 # match to 1e-9 m; velocities are stored in single precision (1e-6 relative).
 source "$(dirname "$0")/../harness.sh"
-values() { h5dump -m '%.17g' -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
 cat >"$T/mv_Def.xml" <<'XML'
 <?xml version="1.0" encoding="UTF-8" ?>
 <case>

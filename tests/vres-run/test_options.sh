@@ -6,7 +6,6 @@
 source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
 
-values() { h5dump -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
 
 "$BIN/vres-gencase" -q --dp 0.04 "$CASES/hydrostatic2d/hydrostatic2d_Def.xml" -o "$T/tank.h5" || notok "gencase"
 

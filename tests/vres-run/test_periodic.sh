@@ -13,7 +13,6 @@
 # tests/lib/test_solver.c (periodic_lattice_has_no_edges): here the density is uniform, so
 # no pressure acts either way.
 source "$(dirname "$0")/../harness.sh"
-values() { h5dump -m '%.17g' -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
 cat >"$T/box_Def.xml" <<'XML'
 <?xml version="1.0" encoding="UTF-8" ?>
 <case>

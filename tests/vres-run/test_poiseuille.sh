@@ -9,8 +9,6 @@ source "$(dirname "$0")/../harness.sh"
 REF=${VRES_REFDATA:-/work/shared/refdata}/poiseuille_couette_transient.csv
 L=0.001 F=2e-4 NU=1e-6 DP=5e-5
 
-# values DATASET FILE: the dataset's numbers, one per line (h5dump, not vres, reads the file)
-values() { h5dump -m '%.17g' -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
 # The series u(y, t) for walls at y = 0 and y = W (awk function text, 200 odd terms).
 SERIES='function u(y, t, W,   s, n, m, pi) { pi = atan2(0, -1); s = F / (2 * nu) * y * (W - y)
   for (n = 0; n < 200; n++) { m = 2 * n + 1

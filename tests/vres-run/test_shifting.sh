@@ -10,7 +10,6 @@
 # two apart. The layer stays stable: exit 0, mass kept.
 source "$(dirname "$0")/../harness.sh"
 DP=0.02
-values() { h5dump -m '%.17g' -y -w 1 -d "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /^ *[-0-9.eE+]+,?$/ {gsub(/[ ,]/, ""); print}'; }
 cat >"$T/layer_Def.xml" <<'XML'
 <?xml version="1.0" encoding="UTF-8" ?>
 <case>
