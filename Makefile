@@ -1,6 +1,7 @@
 # vres - variable-resolution SPH toolkit.
 #   make            build libvres and every tool into bin/ (CUDA parts too where nvcc exists)
 #   make check      build, then run the whole test suite (unit + tool behaviour + ASan readers)
+#                   (B=DIR BINDIR=DIR: another build directory and tool directory, for parallel work)
 #   make bench      throughput table of vres-run (pipelines/bench.sh)
 #   make validate   validation cases at their validation dp (pipelines/validate.mk; long)
 #   make sweep      error-against-run-time sweeps with GNU parallel (pipelines/sweep.mk; long)
@@ -39,6 +40,7 @@ ifneq ($(NVCC),)
   NVFLAGS   := -O2 -std=c++17 $(CUDA_ARCH) -Ilib -Ikernels -DVRES_HAVE_CUDA
   LDLIBS    += -L$(CUDA_HOME)/lib64 -lcudart -Wl,-rpath,$(CUDA_HOME)/lib64
   CU_SRC    := $(wildcard lib/*.cu)
+  CFLAGS    += $(if $(wildcard lib/solver_cuda.cu),-DVRES_HAVE_CUDA_SOLVER)
 else
   CU_SRC    :=
 endif
@@ -46,7 +48,8 @@ endif
 LIB_C     := $(wildcard lib/*.c)
 LIB_CC    := $(wildcard lib/*.cc)
 TOOL_SRC  := $(wildcard tools/vres-*.c)
-TOOLS     := $(patsubst tools/%.c,bin/%,$(TOOL_SRC))
+BINDIR    ?= bin
+TOOLS     := $(patsubst tools/%.c,$(BINDIR)/%,$(TOOL_SRC))
 TEST_SRC  := $(wildcard tests/lib/test_*.c)
 B         ?= build
 TESTS     := $(patsubst tests/lib/%.c,$(B)/tests/%,$(TEST_SRC))
@@ -76,7 +79,7 @@ $(B)/obj/%.cu.o: lib/%.cu $(wildcard lib/*.h kernels/*.h) | $(B)/obj
 $(LIBVRES): $(LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
-bin/vres-%: tools/vres-%.c $(LIBVRES) $(wildcard lib/*.h) | bin
+$(BINDIR)/vres-%: tools/vres-%.c $(LIBVRES) $(wildcard lib/*.h) | $(BINDIR)
 	$(CC) $(CFLAGS) $< -o $@ $(LIBVRES) $(LDLIBS)
 
 $(B)/asan/%.o: lib/%.c $(wildcard lib/*.h kernels/*.h) | $(B)/asan/bin
@@ -90,14 +93,14 @@ $(B)/asan/bin/vres-%: tools/vres-%.c $(ASAN_OBJ) | $(B)/asan/bin
 $(B)/tests/test_%: tests/lib/test_%.c $(LIBVRES) | $(B)/tests
 	$(CC) $(CFLAGS) $< -o $@ $(LIBVRES) $(CHECK_LIBS) $(LDLIBS)
 
-$(B)/obj $(B)/asan/bin $(B)/tests bin:
+$(B)/obj $(B)/asan/bin $(B)/tests $(BINDIR):
 	mkdir -p $@
 
 asan: $(ASAN_TOOLS)
 
 # The whole test suite: unit tests, tool behaviour tests, ASan runs on bad input.
 check: all asan $(TESTS)
-	VRES_BUILD=$(B) bash tests/run
+	VRES_BUILD=$(B) VRES_BIN=$(abspath $(BINDIR)) bash tests/run
 
 # Throughput table of vres-run (not a test; see pipelines/bench.sh).
 bench: all

@@ -1,6 +1,6 @@
-/* solver.c - single-domain WCSPH runs on the CPU (see solver.h): checking what the store asks
- * for, the Symplectic or Verlet step over the cell-sorted particles (with periodic wrapping,
- * moving walls, mDBC and shifting when the scene has them), stability checks and output.
+/* solver.c - single-domain WCSPH runs (see solver.h): checking what the store asks for, the
+ * Symplectic or Verlet step sequence over a backend (solver_int.h: solver_cpu.c, solver_cuda.cu),
+ * stability checks, exclusion of fluid that leaves the domain, output, checkpoints and restarts.
  * Prescribed motions are in solver_motion.c, per-particle physics in kernels/. */
 #include "solver.h"
 
@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,81 +17,11 @@
 #include <unistd.h>
 
 #include "../kernels/eos.h"
-#include "../kernels/mdbc.h"
-#include "../kernels/sph.h"
-#include "cells.h"
 #include "device.h"
 #include "fileio.h"
 #include "log.h"
+#include "solver_int.h"
 #include "solver_motion.h"
-
-/* The resolved run configuration: every parameter the solver uses, checked once. */
-typedef struct run_cfg {
-    int dim;              /* 2 (x-z plane) or 3 */
-    double h;             /* smoothing length (m) */
-    double rho0;          /* reference density (kg/m^3) */
-    double gamma;         /* Tait exponent */
-    double B;             /* Tait stiffness (Pa) */
-    double cs0;           /* reference speed of sound (m/s) */
-    double cfl;           /* CFL number of the variable time step, in (0, 1] */
-    int visco_kind;       /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment) */
-    double visco;         /* Visco: artificial viscosity alpha, or laminar kinematic viscosity (m^2/s) */
-    double visco_bound;   /* ViscoBoundFactor: multiplies Visco for fluid-wall pairs */
-    int ddt;              /* VRES_DDT_* density diffusion kind */
-    double ddt_delta;     /* its coefficient delta */
-    double g[3];          /* gravity (m/s^2) */
-    double tmax;          /* end time (s) */
-    double tout;          /* time between snapshots (s) */
-    double dtmin;         /* time steps below this (s) stop the run as unstable */
-    double rhop_min;      /* fluid density below this (kg/m^3) is a blow-up (when < rhop_max) */
-    double rhop_max;      /* fluid density above this (kg/m^3) is a blow-up */
-    int periodic[3];      /* 1 on the axes that wrap (parameter periodic) */
-    double box_lo[3];     /* lower corner of the cells' box (m): the simulation domain, widened on periodic axes */
-    double box_hi[3];     /* its upper corner (m); on a periodic axis hi - lo is the period */
-    size_t nfluid;        /* fluid particles */
-    size_t nwall;         /* wall particles (DBC), fixed and moving */
-    size_t nmoving;       /* of those, the walls with a prescribed motion */
-    int mdbc;             /* 1 for mDBC walls (Boundary=2), 0 for DBC */
-    int verlet;           /* 1 for Verlet (StepAlgorithm=1), 0 for Symplectic */
-    int verlet_steps;     /* VerletSteps: every this many steps one is an Euler step */
-    int shift;            /* Shifting: 0 none, 1 not near walls, 2 not near fixed walls, 3 everywhere */
-    double shift_coef;    /* ShiftCoef A of dr = A h |v| dt grad C (negative) */
-    double shift_tfs;     /* ShiftTFS: div r below this marks the free surface (0: no detection) */
-    size_t nnormal;       /* wall particles with a normal (those mDBC corrects) */
-    int threads;          /* OpenMP threads used */
-} run_cfg;
-
-/* The working arrays of a run beside the store's own particle arrays. */
-typedef struct run_work {
-    vres_cells cells;     /* cell-linked list over the simulation domain, rebuilt each half step */
-    double *pos0;         /* [3n] positions at the step's start (m) */
-    float *vel0;          /* [3n] velocities at the step's start (m/s) */
-    float *rho0;          /* [n] densities at the step's start (kg/m^3) */
-    double *ace;          /* [3n] accelerations (m/s^2) */
-    double *ar;           /* [n] density rates (kg/m^3/s) */
-    double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
-    double *posref;       /* [3n] positions at the run's start (m), for the moving walls; NULL without them */
-    float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
-    float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
-    double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
-    double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
-    float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
-    double *inv_rho;      /* [n] 2D: 1/density of each particle (m^3/kg) */
-    int general;          /* 1: run the general loop (every option tested at run time; VRES_LOOP=general) */
-    double t_start;       /* time of posref (s) */
-    vres_motion_state *mv0; /* [nbodies] each body's motion at t_start, NULL without moving walls */
-    vres_motion_state *mv;  /* [nbodies] work: the motion from t_start to the time asked */
-} run_work;
-
-/* One interaction loop variant with the shifting sums (kernels/sph.h). */
-typedef void (*interact_shift_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
-                                  const float *rho, const float *press, const double *mass, const uint8_t *type,
-                                  vres_sph_consts C, double *ace, double *ar, double *visc, double *shiftv);
-
-/* One interaction loop variant (kernels/sph.h), chosen once per run. */
-typedef void (*interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel, const float *rho,
-                            const float *press, const double *mass, const uint8_t *type, vres_sph_consts C,
-                            double *ace, double *ar, double *visc);
 
 /* Parameters the solver knows (uses, or checks to be at a value that needs nothing). A store
  * parameter outside this list gets a warning, never silence. */
@@ -101,7 +32,8 @@ static const char *const known_params[] = {
     "ViscoBoundFactor", "DensityDT", "DensityDTvalue", "Shifting", "ShiftCoef", "ShiftTFS", "ShiftAdvCoef",
     "ShiftAdvALE", "ShiftAdvNCPress", "RigidAlgorithm", "FtPause", "CoefDtMin", "DtIni", "DtMin", "DtFixed",
     "DtAllParticles", "TimeMax", "TimeOut", "RhopOutMin", "RhopOutMax", "MinFluidStop", "periodic",
-    "periodic_xinc", "periodic_yinc", "periodic_zinc", "domain_min", "domain_max", "lattice", "modules", NULL};
+    "periodic_xinc", "periodic_yinc", "periodic_zinc", "domain_min", "domain_max", "lattice", "modules", "run_t0",
+    "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded", NULL};
 
 /* 1 when name is in known_params. */
 static int is_known(const char *name)
@@ -248,6 +180,7 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
     double v;
     v = vres_params_get(P, "Boundary", 1);
     c->mdbc = v == 2;
+    c->slip = 1;
     if (v != 1 && v != 2) not_impl(&bad, "Boundary", v, "unknown", "1 (DBC), 2 (mDBC)");
     if (c->mdbc && (v = vres_params_get(P, "SlipMode", 1)) != 1)
         not_impl(&bad, "SlipMode", v, v == 2 ? "mDBC no-slip" : v == 3 ? "mDBC free slip" : "unknown",
@@ -284,8 +217,10 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
         vres_error("ShiftTFS=%g: must lie in [0, %d) (the dimension: div r inside the fluid)", c->shift_tfs, c->dim),
             bad = 1;
     if ((v = vres_params_get(P, "DtFixed", 0)) != 0) not_impl(&bad, "DtFixed", v, "fixed time step", "0 (variable)");
-    if ((v = vres_params_get(P, "MinFluidStop", 0)) != 0)
-        not_impl(&bad, "MinFluidStop", v, "particle exclusion", "0 (a bad particle stops the run)");
+    c->min_fluid = vres_params_get(P, "MinFluidStop", 0);
+    if (!(c->min_fluid >= 0 && c->min_fluid < 1))
+        vres_error("MinFluidStop=%g: must lie in [0, 1) (the fraction of the fluid particles below which the run "
+                   "stops)", c->min_fluid), bad = 1;
     c->ddt = (int)vres_params_get(P, "DensityDT", 0);
     if (c->ddt < 0 || c->ddt > 2 || c->ddt != vres_params_get(P, "DensityDT", 0))
         not_impl(&bad, "DensityDT", vres_params_get(P, "DensityDT", 0), "Fourtakas on all the fluid or unknown",
@@ -310,6 +245,11 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
     if (!(c->dtmin > 0)) c->dtmin = vres_params_get(P, "CoefDtMin", 0.05) * c->h / c->cs0;
     c->rhop_min = vres_params_get(P, "RhopOutMin", 700);
     c->rhop_max = vres_params_get(P, "RhopOutMax", 1300);
+    const char *loop = getenv("VRES_LOOP");
+    c->general = loop && !strcmp(loop, "general");
+    if (loop && !c->general && strcmp(loop, "specialised"))
+        vres_warn("VRES_LOOP=%s not known (general or specialised): using the specialised loop", loop);
+    if (c->general) vres_info("VRES_LOOP=general: the general interaction loop (options tested at run time)");
 
     for (size_t i = 0; i < P->n; i++)
         if (!is_known(P->p[i].name)) vres_warn("parameter %s is not known to vres-run: not used", P->p[i].name);
@@ -322,8 +262,9 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
     return bad ? -1 : 0;
 }
 
-/* The list of active modules, as printed at start and recorded in each snapshot ("modules"). */
-static char *modules(const run_cfg *c)
+/* The list of active modules, as printed at start and recorded in each snapshot ("modules");
+ * gpu names the CUDA backend, NULL for the CPU. */
+static char *modules(const run_cfg *c, const char *gpu)
 {
     static const char *const ddt_name[] = {"", " ddt-molteni", " ddt-fourtakas"};
     char ddt[64] = "";
@@ -348,79 +289,41 @@ static char *modules(const run_cfg *c)
                  c->periodic[2] ? "z" : "");
     char step[48] = "symplectic";
     if (c->verlet) snprintf(step, sizeof step, "verlet(euler every %d)", c->verlet_steps);
-    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s %s cpu-openmp(%d threads)", c->dim,
-                          c->gamma, visc, walls, moving, ddt, shift, per, step, c->threads);
+    char dev[96];
+    if (gpu) snprintf(dev, sizeof dev, "%s", gpu);
+    else snprintf(dev, sizeof dev, "cpu-openmp(%d threads)", c->threads);
+    char minf[48] = "";
+    if (c->min_fluid > 0) snprintf(minf, sizeof minf, " minfluidstop(%g)", c->min_fluid);
+    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s %s%s %s%s", c->dim, c->gamma, visc,
+                          walls, moving, ddt, shift, per, step, minf, dev, c->general ? " general-loop" : "");
 }
 
-/* The interaction variant for this scene: no diffusion code when DensityDT=0, no wall tests
- * when there are no walls, only the viscosity asked for. */
-static interact_fn pick_interaction(const run_cfg *c)
-{
-    static const interact_fn table[2][2][3] = {
-        {{vres_sph_plain_cpu, vres_sph_molteni_cpu, vres_sph_fourtakas_cpu},
-         {vres_sph_dbc_cpu, vres_sph_dbc_molteni_cpu, vres_sph_dbc_fourtakas_cpu}},
-        {{vres_sph_laminar_plain_cpu, vres_sph_laminar_molteni_cpu, vres_sph_laminar_fourtakas_cpu},
-         {vres_sph_laminar_dbc_cpu, vres_sph_laminar_dbc_molteni_cpu, vres_sph_laminar_dbc_fourtakas_cpu}}};
-    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
 
-/* The shifting variant of pick_interaction's choice. */
-static interact_shift_fn pick_interaction_shift(const run_cfg *c)
-{
-    static const interact_shift_fn table[2][2][3] = {
-        {{vres_sph_shift_plain_cpu, vres_sph_shift_molteni_cpu, vres_sph_shift_fourtakas_cpu},
-         {vres_sph_shift_dbc_cpu, vres_sph_shift_dbc_molteni_cpu, vres_sph_shift_dbc_fourtakas_cpu}},
-        {{vres_sph_shift_laminar_plain_cpu, vres_sph_shift_laminar_molteni_cpu, vres_sph_shift_laminar_fourtakas_cpu},
-         {vres_sph_shift_laminar_dbc_cpu, vres_sph_shift_laminar_dbc_molteni_cpu,
-          vres_sph_shift_laminar_dbc_fourtakas_cpu}}};
-    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
+/* What a restart takes from the snapshot it starts from (parameters the solver writes into
+ * every snapshot, origin "run"). */
+typedef struct run_resume {
+    double t0;          /* time the output schedule counts from: output k is due at t0 + k tout (s) */
+    int next_due;       /* k of the next output due */
+    int next_snap;      /* number of the next snapshot file to write */
+    double nfluid0;     /* fluid particles at the run's start (for MinFluidStop) */
+    double nexcluded;   /* particles excluded so far */
+} run_resume;
 
-/* One 2D interaction loop variant (kernels/sph.h: vres_sph2d_*), over n = ncells + 1 cells. */
-typedef void (*interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
-                              double *ace, double *ar, double *visc, double *shiftv);
+/* The run directory's files. */
+typedef struct run_files {
+    const char *dir;    /* the run directory */
+    FILE *tsv;          /* run.tsv, open for appending */
+    FILE *excl;         /* excluded.tsv, opened at the first exclusion (NULL until then) */
+} run_files;
 
-/* The 2D variant for this scene, with the shifting sums when shift is 1. */
-static interact2d_fn pick_interaction2d(const run_cfg *c, int shift)
-{
-    static const interact2d_fn table[2][2][2][3] = {
-        {{{vres_sph2d_plain_cpu, vres_sph2d_molteni_cpu, vres_sph2d_fourtakas_cpu},
-          {vres_sph2d_dbc_cpu, vres_sph2d_dbc_molteni_cpu, vres_sph2d_dbc_fourtakas_cpu}},
-         {{vres_sph2d_laminar_plain_cpu, vres_sph2d_laminar_molteni_cpu, vres_sph2d_laminar_fourtakas_cpu},
-          {vres_sph2d_laminar_dbc_cpu, vres_sph2d_laminar_dbc_molteni_cpu, vres_sph2d_laminar_dbc_fourtakas_cpu}}},
-        {{{vres_sph2d_shift_plain_cpu, vres_sph2d_shift_molteni_cpu, vres_sph2d_shift_fourtakas_cpu},
-          {vres_sph2d_shift_dbc_cpu, vres_sph2d_shift_dbc_molteni_cpu, vres_sph2d_shift_dbc_fourtakas_cpu}},
-         {{vres_sph2d_shift_laminar_plain_cpu, vres_sph2d_shift_laminar_molteni_cpu,
-           vres_sph2d_shift_laminar_fourtakas_cpu},
-          {vres_sph2d_shift_laminar_dbc_cpu, vres_sph2d_shift_laminar_dbc_molteni_cpu,
-           vres_sph2d_shift_laminar_dbc_fourtakas_cpu}}}};
-    return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
+/* 1 when SIGINT or SIGTERM asked the run to stop (it writes checkpoint.h5 first). */
+static volatile sig_atomic_t stop_asked;
 
-/* Make the run directory (and parents) and check it holds no earlier run. 0, or -1 after
- * printing why. Nothing is created when the path cannot be a directory. */
-static int prepare_rundir(const char *dir)
+/* Signal handler: ask the time loop to stop after the current step. */
+static void on_signal(int sig)
 {
-    struct stat st;
-    if (stat(dir, &st) == 0) {
-        if (!S_ISDIR(st.st_mode)) {
-            vres_error("%s: exists and is not a directory", dir);
-            return -1;
-        }
-        char *tsv = vres_xasprintf("%s/run.tsv", dir);
-        int taken = access(tsv, F_OK) == 0;
-        free(tsv);
-        if (taken) {
-            vres_error("%s: already holds a run (run.tsv): remove it or choose another -o", dir);
-            return -1;
-        }
-        if (access(dir, W_OK | X_OK) != 0) {
-            vres_error("%s: directory not writable: %s", dir, strerror(errno));
-            return -1;
-        }
-        return 0;
-    }
-    return vres_mkdirs(dir);
+    (void)sig;
+    stop_asked = 1;
 }
 
 /* Seconds of wall-clock time since an arbitrary origin. */
@@ -431,98 +334,28 @@ static double wall_now(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* Sort the domain by cell for the positions it holds now, carrying the step-start arrays of w
- * along when carry is 1 (mid-step). 0, or -1 after printing why. */
-static int sort_by_cell(run_work *w, vres_domain *d, int carry)
+/* 1 when position x (m) lies in the cells' box of c (the test vres_cells_locate makes). */
+static int in_box(const run_cfg *c, const double x[3])
 {
-    vres_cells_build(&w->cells, d->pos, d->n);
-    if (vres_cells_reorder(&w->cells, d) != 0) return -1;
-    if (w->posref) vres_cells_gather(&w->cells, w->posref, 3 * sizeof(double));
-    if (w->velm1) vres_cells_gather(&w->cells, w->velm1, 3 * sizeof(float));
-    if (w->rhom1) vres_cells_gather(&w->cells, w->rhom1, sizeof(float));
-    if (!carry) return 0;
-    vres_cells_gather(&w->cells, w->pos0, 3 * sizeof(double));
-    vres_cells_gather(&w->cells, w->vel0, 3 * sizeof(float));
-    vres_cells_gather(&w->cells, w->rho0, sizeof(float));
-    return 0;
-}
-
-/* EOS then the interaction at the domain's current state, sorted by cell first. Returns the
- * largest fluid |acceleration| (m/s^2) and, in *visc_max, the largest viscous rate (1/s). */
-static double forces(run_work *w, vres_domain *d, interact_fn interact, interact_shift_fn interact_shift,
-                     const vres_sph_consts *C, const run_cfg *c, double *visc_max)
-{
-    if (c->mdbc && c->nnormal)
-        vres_mdbc_cpu(d->n, &w->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, *C, c->dim);
-    vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
-    int shift = interact_shift != NULL;
-    if (c->dim == 2) {
-        size_t n = d->n;
-        double *x = w->x2d, *z = w->x2d + n, *ir = w->inv_rho;
-        float *vx = w->v2d, *vz = w->v2d + n;
-        const double *pos = d->pos;
-        const float *vel = d->vel, *rho = d->rho;
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; i++) {
-            x[i] = pos[3 * i], z[i] = pos[3 * i + 2];
-            vx[i] = vel[3 * i], vz[i] = vel[3 * i + 2];
-            ir[i] = 1.0 / rho[i];
-        }
-        vres_sph_2d P = {x, z, vx, vz, d->rho, d->press, ir, d->mass_p, d->type};
-        if (w->general)
-            vres_sph2d_general_cpu(w->cells.ncells + 1, &w->cells, &P, C, w->ace, w->ar, w->visc, w->shiftv, c->ddt,
-                                   c->nwall > 0, c->visco_kind, shift);
-        else pick_interaction2d(c, shift)(w->cells.ncells + 1, &w->cells, &P, C, w->ace, w->ar, w->visc, w->shiftv);
-    } else if (w->general)
-        vres_sph_general_cpu(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar,
-                             w->visc, w->shiftv, c->ddt, c->nwall > 0, c->visco_kind, shift);
-    else if (interact_shift)
-        interact_shift(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar,
-                       w->visc, w->shiftv);
-    else interact(d->n, &w->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, w->ace, w->ar, w->visc);
-    double amax2 = 0, vmax = 0;
-    const double *ace = w->ace;
-    const uint8_t *type = d->type;
-#pragma omp parallel for reduction(max : amax2, vmax) schedule(static)
-    for (size_t i = 0; i < d->n; i++) {
-        if (w->visc[i] > vmax) vmax = w->visc[i];
-        if (type[i] != VRES_FLUID) continue;
-        double a2 = ace[3 * i] * ace[3 * i] + ace[3 * i + 1] * ace[3 * i + 1] + ace[3 * i + 2] * ace[3 * i + 2];
-        if (a2 > amax2) amax2 = a2;
+    for (int a = 0; a < 3; a++) {
+        if (a == 1 && c->dim == 2) continue;
+        if (!(x[a] >= c->box_lo[a] && (c->periodic[a] ? x[a] < c->box_hi[a] : x[a] <= c->box_hi[a]))) return 0;
     }
-    *visc_max = vmax;
-    return sqrt(amax2);
-}
-
-/* The first particle (lowest slot) whose state is bad: a non-finite position, velocity or
- * density, a position outside the cells' box, or a fluid density outside (rhop_min, rhop_max).
- * Returns its slot, or (size_t)-1 when all are good. */
-static size_t find_bad(const vres_domain *d, const vres_cells *g, const run_cfg *c)
-{
-    size_t first = (size_t)-1;
-    int check_rho = c->rhop_min < c->rhop_max;
-#pragma omp parallel for reduction(min : first) schedule(static)
-    for (size_t i = 0; i < d->n; i++) {
-        int ijk[3], ok = isfinite(d->rho[i]) && vres_cells_locate(g, &d->pos[3 * i], ijk);
-        for (int k = 0; k < 3; k++) ok = ok && isfinite(d->vel[3 * i + k]);
-        if (ok && check_rho && d->type[i] == VRES_FLUID) ok = d->rho[i] >= c->rhop_min && d->rho[i] <= c->rhop_max;
-        if (!ok && i < first) first = i;
-    }
-    return first;
+    return 1;
 }
 
 /* Print the diagnosis of bad particle i (found after step `step` at time t). */
-static void diagnose(const vres_domain *d, const vres_cells *g, const run_cfg *c, size_t i, long step, double t)
+static void diagnose(const vres_domain *d, const run_cfg *c, size_t i, long step, double t)
 {
     const double *x = &d->pos[3 * i];
     const float *v = &d->vel[3 * i];
     char what[160];
-    int ijk[3];
     if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2])) snprintf(what, sizeof what, "non-finite position");
-    else if (!vres_cells_locate(g, x, ijk)) snprintf(what, sizeof what, "left the simulation domain");
     else if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]))
         snprintf(what, sizeof what, "non-finite velocity (%g, %g, %g) m/s", v[0], v[1], v[2]);
     else if (!isfinite(d->rho[i])) snprintf(what, sizeof what, "non-finite density %g", d->rho[i]);
+    else if (!in_box(c, x))
+        snprintf(what, sizeof what, "a wall particle left the simulation domain (walls cannot be excluded)");
     else
         snprintf(what, sizeof what, "density %g kg/m^3 outside RhopOutMin..RhopOutMax = %g..%g", d->rho[i],
                  c->rhop_min, c->rhop_max);
@@ -536,15 +369,19 @@ typedef struct out_stats {
     double vmax;    /* largest fluid speed (m/s) */
     double rho_lo;  /* smallest fluid density (kg/m^3) */
     double rho_hi;  /* largest fluid density (kg/m^3) */
+    size_t nfluid;  /* fluid particles */
+    size_t nwall;   /* wall particles */
 } out_stats;
 
-/* Fluid mass, largest speed and density range of the domain. */
+/* Fluid mass, largest speed, density range and counts of the domain. */
 static out_stats stats(const vres_domain *d)
 {
     double m = 0, v2 = 0, lo = INFINITY, hi = -INFINITY;
-#pragma omp parallel for reduction(+ : m) reduction(max : v2, hi) reduction(min : lo) schedule(static)
+    size_t nf = 0;
+#pragma omp parallel for reduction(+ : m, nf) reduction(max : v2, hi) reduction(min : lo) schedule(static)
     for (size_t i = 0; i < d->n; i++) {
         if (d->type[i] != VRES_FLUID) continue;
+        nf++;
         m += d->mass_p[i];
         const float *v = &d->vel[3 * i];
         double s2 = (double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2];
@@ -552,17 +389,23 @@ static out_stats stats(const vres_domain *d)
         if (d->rho[i] < lo) lo = d->rho[i];
         if (d->rho[i] > hi) hi = d->rho[i];
     }
-    out_stats o = {m, sqrt(v2), lo, hi};
+    out_stats o = {m, sqrt(v2), lo, hi, nf, d->n - nf};
     return o;
 }
 
-/* Write the store's current state as path (pressure refreshed from the density). 0 or -1. */
-static int write_snapshot(vres_store *s, const run_cfg *c, const char *path, double t, long step)
+/* Write the store's current state as path (pressure refreshed from the density), with what a
+ * restart needs in its parameters. 0 or -1. */
+static int write_snapshot(vres_store *s, const run_cfg *c, const run_resume *r, const char *path, double t, long step)
 {
     vres_domain *d = &s->dom[0];
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
     s->time = t;
     s->step = step;
+    vres_params_set1(&s->params, "run_t0", r->t0, "s", "run");
+    vres_params_set1(&s->params, "run_next_due", r->next_due, "", "run");
+    vres_params_set1(&s->params, "run_next_snap", r->next_snap, "", "run");
+    vres_params_set1(&s->params, "run_nfluid0", r->nfluid0, "", "run");
+    vres_params_set1(&s->params, "run_excluded", r->nexcluded, "", "run");
     return vres_store_write(s, path);
 }
 
@@ -571,34 +414,53 @@ typedef struct run_clock {
     double start;       /* wall time at the start of the time loop (s) */
     double last;        /* wall time at the previous output (s) */
     long last_step;     /* step of the previous output */
-    int nout;           /* snapshots written */
+    double last_ckpt;   /* wall time of the last checkpoint (or the start) (s) */
 } run_clock;
 
-/* Write snapshot number clk->nout and its run.tsv line. 0, or -1 after printing why. */
-static int output(vres_store *s, const run_cfg *c, const char *dir, FILE *tsv, run_clock *clk, double t, long step,
-                  double dt)
+/* Write snapshot number r->next_snap and its run.tsv line from the backend's state. 0, or -1
+ * after printing why. */
+static int output(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, const run_files *f,
+                  run_clock *clk, double t, long step, double dt)
 {
     /* the rate counts the stepping since the previous output, not the writing of snapshots */
     double now = wall_now();
-    double rate = now > clk->last ? (double)(step - clk->last_step) * s->dom[0].n / (now - clk->last) : 0;
-    char *path = vres_xasprintf("%s/snap_%05d.h5", dir, clk->nout);
-    int rc = write_snapshot(s, c, path, t, step);
+    double steps_s = now > clk->last ? (double)(step - clk->last_step) / (now - clk->last) : 0;
+    size_t pairs = b->count_pairs(b);
+    if (b->download(b, &s->dom[0]) != 0) return -1;
+    r->next_snap++;
+    char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
+    int rc = write_snapshot(s, c, r, path, t, step);
     free(path);
     if (rc) return -1;
     out_stats st = stats(&s->dom[0]);
-    fprintf(tsv, "%.9g\t%ld\t%.6g\t%zu\t%zu\t%.9g\t%.6g\t%.7g\t%.7g\t%.3f\t%.4g\n", t, step, dt, c->nfluid, c->nwall,
-            st.mass, st.vmax, st.rho_lo, st.rho_hi, now - clk->start, rate);
-    fflush(tsv);
-    if (ferror(tsv)) {
-        vres_error("%s/run.tsv: write failed", dir);
+    /* interactions: ordered pairs within 2h, once per force evaluation (two per Symplectic step) */
+    double passes = c->verlet ? 1 : 2;
+    fprintf(f->tsv, "%.9g\t%ld\t%.6g\t%zu\t%zu\t%.9g\t%.6g\t%.7g\t%.7g\t%.3f\t%.4g\t%.0f\t%zu\t%.4g\n", t, step, dt,
+            st.nfluid, st.nwall, st.mass, st.vmax, st.rho_lo, st.rho_hi, now - clk->start,
+            steps_s * (double)s->dom[0].n, r->nexcluded, pairs, steps_s * passes * (double)pairs);
+    fflush(f->tsv);
+    if (ferror(f->tsv)) {
+        vres_error("%s/run.tsv: write failed", f->dir);
         return -1;
     }
-    vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3", clk->nout,
-               t, step, dt, st.vmax, st.rho_lo, st.rho_hi);
-    clk->nout++;
+    vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3",
+               r->next_snap - 1, t, step, dt, st.vmax, st.rho_lo, st.rho_hi);
     clk->last = wall_now();
     clk->last_step = step;
     return 0;
+}
+
+/* Write RUNDIR/checkpoint.h5 (atomically) from the backend's state. 0 or -1. */
+static int checkpoint(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+                      run_clock *clk, double t, long step)
+{
+    if (b->download(b, &s->dom[0]) != 0) return -1;
+    char *path = vres_xasprintf("%s/checkpoint.h5", dir);
+    int rc = write_snapshot(s, c, r, path, t, step);
+    if (!rc) vres_debug("checkpoint at t = %.6g s, step %ld: %s", t, step, path);
+    free(path);
+    clk->last_ckpt = wall_now();
+    return rc;
 }
 
 /* The progress line on a terminal: rewritten in place at most twice a second while the run
@@ -623,31 +485,33 @@ static void progress(const run_cfg *c, const run_clock *clk, double t0, double t
     shown = 1;
 }
 
-/* Stop after a blow-up: put the step-start state (the last good one) back, write it as
- * snap_last_good.h5 and say where. Returns VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
-static int stop_unstable(vres_store *s, run_work *w, const run_cfg *c, const char *dir, double t0, long step0)
+/* Stop after a blow-up: diagnose slot bad (the state after the failed step), put the step-start
+ * state (the last good one) back, write it as snap_last_good.h5 and say where. Returns
+ * VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
+static int stop_unstable(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+                         size_t bad, long step, double t, double t0, long step0)
 {
     vres_domain *d = &s->dom[0];
-    memcpy(d->pos, w->pos0, 3 * d->n * sizeof *d->pos);
-    memcpy(d->vel, w->vel0, 3 * d->n * sizeof *d->vel);
-    memcpy(d->rho, w->rho0, d->n * sizeof *d->rho);
+    if (bad != (size_t)-1 && b->download(b, d) == 0) diagnose(d, c, bad, step, t);
+    b->restore_start(b);
+    if (b->download(b, d) != 0) return VRES_RUN_FAIL;
     char *path = vres_xasprintf("%s/snap_last_good.h5", dir);
-    int rc = write_snapshot(s, c, path, t0, step0);
-    if (!rc) vres_error("last good state (step %ld, t = %.6g s) written to %s", step0, t0, path);
+    int rc = write_snapshot(s, c, r, path, t0, step0);
+    if (!rc)
+        vres_error("last good state (step %ld, t = %.6g s) written to %s; it restarts with --restart", step0, t0,
+                   path);
     free(path);
     return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
 }
 
-/* Put the moving walls where their motion has them at time t (s), with its velocity there:
- * x = M x_start with M the motion from t_start to t, v = v_p + w x (x - p). */
-static void move_walls(const vres_store *s, run_work *w, vres_domain *d, double t)
+/* The moving bodies' transforms at time t (s) relative to their placement at t_start, into mv:
+ * M = T(t) T(t_start)^-1, so R = R_t R_0^T and d = d_t - R d_0 (mv0: the motion at t_start). */
+static void wall_motion(const vres_store *s, const vres_motion_state *mv0, double t, vres_motion_state *mv)
 {
-    if (!w->posref) return;
     for (size_t k = 0; k < s->nbodies; k++) {
-        vres_motion_state *m = &w->mv[k];
-        const vres_motion_state *m0 = &w->mv0[k];
+        vres_motion_state *m = &mv[k];
+        const vres_motion_state *m0 = &mv0[k];
         vres_motion_eval(&s->body[k], t, m);
-        /* M = T(t) T(t_start)^-1: R = R_t R_0^T, d = d_t - R d_0 */
         double R[9], dd[3];
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
@@ -658,240 +522,356 @@ static void move_walls(const vres_store *s, run_work *w, vres_domain *d, double 
         memcpy(m->R, R, sizeof R);
         memcpy(m->d, dd, sizeof dd);
     }
-    const double *xr = w->posref;
-    const vres_motion_state *mv = w->mv;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < d->n; i++) {
-        if (d->type[i] != VRES_MOVING) continue;
-        const vres_motion_state *m = &mv[body_of(s, d->mk[i])];
-        double *x = &d->pos[3 * i], r[3];
-        for (int a = 0; a < 3; a++)
-            x[a] = m->R[3 * a] * xr[3 * i] + m->R[3 * a + 1] * xr[3 * i + 1] + m->R[3 * a + 2] * xr[3 * i + 2] +
-                   m->d[a];
-        for (int a = 0; a < 3; a++) r[a] = x[a] - m->p[a];
-        d->vel[3 * i] = (float)(m->v[0] + m->w[1] * r[2] - m->w[2] * r[1]);
-        d->vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
-        d->vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
-    }
 }
 
-/* Move each fluid particle by its shifting displacement (shiftv[4i..4i+2], m; zero elsewhere). */
-static void apply_shift(vres_domain *d, const double *shiftv)
-{
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < d->n; i++)
-        for (int k = 0; k < 3; k++) d->pos[3 * i + k] += shiftv[4 * i + k];
-}
-
-/* Allocate the working arrays and the cells over the simulation domain. 0, or -1. */
-static int work_init(run_work *w, const vres_store *s, const run_cfg *c)
-{
-    size_t n = s->dom[0].n;
-    memset(w, 0, sizeof *w);
-    if (vres_cells_init(&w->cells, c->dim, 2.0 * c->h, c->box_lo, c->box_hi, c->periodic) != 0) return -1;
-    w->pos0 = vres_xmalloc(3 * n * sizeof *w->pos0 + 1);
-    w->vel0 = vres_xmalloc(3 * n * sizeof *w->vel0 + 1);
-    w->rho0 = vres_xmalloc(n * sizeof *w->rho0 + 1);
-    w->ace = vres_xcalloc(3 * n + 1, sizeof *w->ace);
-    w->ar = vres_xcalloc(n + 1, sizeof *w->ar);
-    w->visc = vres_xcalloc(n + 1, sizeof *w->visc);
-    if (c->shift) w->shiftv = vres_xcalloc(4 * n + 1, sizeof *w->shiftv);
-    if (c->dim == 2) {
-        w->x2d = vres_xmalloc(2 * n * sizeof *w->x2d + 1);
-        w->v2d = vres_xmalloc(2 * n * sizeof *w->v2d + 1);
-        w->inv_rho = vres_xmalloc(n * sizeof *w->inv_rho + 1);
-    }
-    const char *loop = getenv("VRES_LOOP");
-    w->general = loop && !strcmp(loop, "general");
-    if (loop && !w->general && strcmp(loop, "specialised"))
-        vres_warn("VRES_LOOP=%s not known (general or specialised): using the specialised loop", loop);
-    if (w->general) vres_info("VRES_LOOP=general: the general interaction loop (options tested at run time)");
-    if (c->verlet) { /* the previous step of the first is the start itself, as DualSPHysics */
-        w->velm1 = vres_xmalloc(3 * n * sizeof *w->velm1 + 1);
-        w->rhom1 = vres_xmalloc(n * sizeof *w->rhom1 + 1);
-        memcpy(w->velm1, s->dom[0].vel, 3 * n * sizeof *w->velm1);
-        memcpy(w->rhom1, s->dom[0].rho, n * sizeof *w->rhom1);
-    }
-    if (c->nmoving) {
-        w->posref = vres_xmalloc(3 * n * sizeof *w->posref + 1);
-        memcpy(w->posref, s->dom[0].pos, 3 * n * sizeof *w->posref);
-        w->t_start = s->time;
-        w->mv0 = vres_xcalloc(s->nbodies + 1, sizeof *w->mv0);
-        w->mv = vres_xcalloc(s->nbodies + 1, sizeof *w->mv);
-        for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], s->time, &w->mv0[k]);
-    }
-    return 0;
-}
-
-/* Free the working arrays. */
-static void work_free(run_work *w)
-{
-    vres_cells_free(&w->cells);
-    free(w->pos0);
-    free(w->vel0);
-    free(w->rho0);
-    free(w->ace);
-    free(w->ar);
-    free(w->visc);
-    free(w->posref);
-    free(w->shiftv);
-    free(w->x2d);
-    free(w->v2d);
-    free(w->inv_rho);
-    free(w->velm1);
-    free(w->rhom1);
-    free(w->mv0);
-    free(w->mv);
-}
-
-/* The kernel and physics constants of the interaction. */
-static vres_sph_consts make_consts(const run_cfg *c)
-{
-    vres_sph_consts C;
-    C.k = vres_wendland_make(c->dim, c->h);
-    C.h = c->h;
-    C.fourh2 = 4.0 * c->h * c->h;
-    C.eta2 = 0.01 * c->h * c->h;
-    C.cs0 = c->cs0;
-    int lam = c->visco_kind == VRES_VISC_LAMINAR;
-    C.alpha = lam ? 0 : c->visco;
-    C.alpha_wall = lam ? 0 : c->visco * c->visco_bound;
-    C.nu = lam ? c->visco : 0;
-    C.nu_wall = lam ? c->visco * c->visco_bound : 0;
-    C.shift_mode = c->shift;
-    C.ddt_khc = 2.0 * c->h * c->ddt_delta * c->cs0;
-    C.rho0 = c->rho0;
-    C.rho0_over_B = c->rho0 / c->B;
-    C.inv_gamma = 1.0 / c->gamma;
-    memcpy(C.g, c->g, sizeof C.g);
-    return C;
-}
-
-/* The time loop: Symplectic steps from the store's time to c->tmax with outputs. */
-static int time_loop(vres_store *s, const run_cfg *c, const char *dir, FILE *tsv)
+/* Remove the fluid particles that left the simulation domain (finite state, outside the cells'
+ * box), each recorded in RUNDIR/excluded.tsv with the time, step and reason. A wall outside
+ * the box is not removed: returns its slot (the run must stop). Returns (size_t)-1 when done,
+ * (size_t)-2 after printing why the record could not be written. */
+static size_t exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+                          long step)
 {
     vres_domain *d = &s->dom[0];
-    run_work w;
-    if (work_init(&w, s, c) != 0) return VRES_RUN_FAIL;
-    vres_sph_consts C = make_consts(c);
-    interact_fn interact = pick_interaction(c);
-    interact_shift_fn interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
-    double t = s->time, dt = 0, next_out = t + c->tout;
+    if (b->download(b, d) != 0) return (size_t)-2;
+    double *xref = c->nmoving ? vres_xmalloc(3 * d->n * sizeof *xref) : NULL;
+    if (xref) b->get_xref(b, xref);
+    if (!f->excl) {
+        char *path = vres_xasprintf("%s/excluded.tsv", f->dir);
+        f->excl = fopen(path, "a");
+        if (f->excl && ftell(f->excl) == 0)
+            fprintf(f->excl, "# time_s\tstep\tid\ttype\tmk\tx_m\ty_m\tz_m\tvx_m_s\tvy_m_s\tvz_m_s\trho_kg_m3\treason\n");
+        if (!f->excl) vres_error("%s: cannot write: %s", path, strerror(errno));
+        free(path);
+        if (!f->excl) {
+            free(xref);
+            return (size_t)-2;
+        }
+    }
+    for (size_t i = 0; i < d->n; i++) /* a wall outside stops the run: find it before changing anything */
+        if (d->type[i] != VRES_FLUID && !in_box(c, &d->pos[3 * i])) {
+            free(xref);
+            return i;
+        }
+    size_t k = 0, nex = 0;
+    char ids[96] = "";
+    for (size_t i = 0; i < d->n; i++) {
+        if (in_box(c, &d->pos[3 * i])) {
+            if (k != i) {
+                memcpy(&d->pos[3 * k], &d->pos[3 * i], 3 * sizeof *d->pos);
+                memcpy(&d->vel[3 * k], &d->vel[3 * i], 3 * sizeof *d->vel);
+                memcpy(&d->normal[3 * k], &d->normal[3 * i], 3 * sizeof *d->normal);
+                if (xref) memcpy(&xref[3 * k], &xref[3 * i], 3 * sizeof *xref);
+                d->rho[k] = d->rho[i], d->press[k] = d->press[i], d->mass_p[k] = d->mass_p[i];
+                d->type[k] = d->type[i], d->mk[k] = d->mk[i], d->id[k] = d->id[i];
+            }
+            k++;
+            continue;
+        }
+        const double *x = &d->pos[3 * i];
+        const float *v = &d->vel[3 * i];
+        fprintf(f->excl, "%.9g\t%ld\t%llu\t%s\t%d\t%.9g\t%.9g\t%.9g\t%.6g\t%.6g\t%.6g\t%.7g\tleft the simulation domain\n",
+                t, step, (unsigned long long)d->id[i], vres_ptype_name(d->type[i]), d->mk[i], x[0], x[1], x[2], v[0],
+                v[1], v[2], d->rho[i]);
+        if (nex < 4) /* the first few ids for the message */
+            snprintf(ids + strlen(ids), sizeof ids - strlen(ids), "%s%llu", nex ? ", " : "",
+                     (unsigned long long)d->id[i]);
+        nex++;
+    }
+    d->n = k;
+    r->nexcluded += (double)nex;
+    vres_info("t = %.6g s, step %ld: %zu fluid particle%s left the simulation domain and %s excluded (id %s%s; "
+              "recorded in %s/excluded.tsv)", t, step, nex, nex == 1 ? "" : "s", nex == 1 ? "is" : "are", ids,
+              nex > 4 ? ", ..." : "", f->dir);
+    fflush(f->excl);
+    int bad = ferror(f->excl) || b->upload(b, d, xref) != 0;
+    free(xref);
+    if (bad) {
+        vres_error("%s/excluded.tsv: write failed", f->dir);
+        return (size_t)-2;
+    }
+    return (size_t)-1;
+}
+
+/* After a step (or half step) that ended at time t: stop on a fatal particle, exclude the
+ * fluid that left the domain, and stop when too little fluid is left. Returns VRES_RUN_OK to
+ * go on, or the run's exit status after printing why. */
+static int after_step(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+                      long step, double t0, long step0)
+{
+    size_t nout, bad = b->check(b, &nout);
+    if (bad == (size_t)-1 && nout) {
+        bad = exclude_out(s, b, c, r, f, t, step);
+        if (bad == (size_t)-2) return VRES_RUN_FAIL;
+        if (bad != (size_t)-1) return stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
+        size_t nf = stats(&s->dom[0]).nfluid;
+        if (nf == 0 || (c->min_fluid > 0 && nf < c->min_fluid * r->nfluid0)) {
+            vres_error("unstable at step %ld, t = %.6g s: %zu fluid particles left, below MinFluidStop=%g of the %.0f "
+                       "at the start (%.0f excluded)", step, t, nf, c->min_fluid, r->nfluid0, r->nexcluded);
+            /* the state after the exclusions is sound: it is the last good one */
+            char *path = vres_xasprintf("%s/snap_last_good.h5", f->dir);
+            int rc = write_snapshot(s, c, r, path, t, step);
+            if (!rc) vres_error("last good state (step %ld, t = %.6g s) written to %s", step, t, path);
+            free(path);
+            return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
+        }
+    }
+    if (bad != (size_t)-1) return stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
+    return VRES_RUN_OK;
+}
+
+/* The time loop: Symplectic (or Verlet) steps on backend b from the store's time to c->tmax,
+ * with outputs due at r->t0 + k tout, checkpoints every ckpt_s seconds of wall time. */
+static int time_loop(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double ckpt_s,
+                     int restarted)
+{
+    double t = s->time, dt = 0;
     long step = s->step, step_start = s->step;
-    int verlet_count = 0; /* Verlet steps since the last Euler step */
-    run_clock clk = {wall_now(), wall_now(), step, 0};
-    int rc = VRES_RUN_OK;
-    move_walls(s, &w, d, t); /* their velocity at the start, which the store may not hold */
-    size_t bad = find_bad(d, &w.cells, c);
-    if (bad != (size_t)-1) {
-        diagnose(d, &w.cells, c, bad, step, t);
+    /* a restart's first Verlet step is an Euler step: the previous step is not in the snapshot */
+    int verlet_count = restarted ? c->verlet_steps - 1 : 0;
+    run_clock clk = {wall_now(), wall_now(), step, wall_now()};
+    int rc = VRES_RUN_OK, nsnap0 = r->next_snap;
+    vres_motion_state *mv0 = vres_xcalloc(s->nbodies + 1, sizeof *mv0);
+    vres_motion_state *mv = vres_xcalloc(s->nbodies + 1, sizeof *mv);
+    for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &mv0[k]);
+    wall_motion(s, mv0, t, mv);
+    b->move_walls(b, mv); /* their velocity at the start, which the store may not hold */
+    b->sort(b, 0);
+    size_t nout, bad = b->check(b, &nout);
+    if (bad != (size_t)-1 || nout) {
+        b->download(b, &s->dom[0]);
+        for (size_t i = 0; bad == (size_t)-1 && i < s->dom[0].n; i++)
+            if (!in_box(c, &s->dom[0].pos[3 * i])) bad = i;
         vres_error("the store's initial state is already bad: nothing run");
-        work_free(&w);
+        diagnose(&s->dom[0], c, bad, step, t);
+        free(mv0);
+        free(mv);
         return VRES_RUN_FAIL;
     }
-    if (output(s, c, dir, tsv, &clk, t, step, 0) != 0) rc = VRES_RUN_FAIL;
+    if (!restarted) {
+        r->next_due = 1;
+        if (output(s, b, c, r, f, &clk, t, step, 0) != 0) rc = VRES_RUN_FAIL;
+    }
     while (rc == VRES_RUN_OK && t < c->tmax * (1 - 1e-12)) {
         double visc;
-        if (sort_by_cell(&w, d, 0) != 0) { rc = VRES_RUN_FAIL; break; }
-        memcpy(w.pos0, d->pos, 3 * d->n * sizeof *d->pos);
-        memcpy(w.vel0, d->vel, 3 * d->n * sizeof *d->vel);
-        memcpy(w.rho0, d->rho, d->n * sizeof *d->rho);
-        double amax = forces(&w, d, interact, c->verlet ? interact_shift : NULL, &C, c, &visc);
+        if (b->sort(b, 0) != 0) { rc = VRES_RUN_FAIL; break; }
+        b->save_start(b);
+        double amax = b->forces(b, c->verlet && c->shift != 0, &visc);
         double dt1 = amax > 0 ? sqrt(c->h / amax) : INFINITY;
         dt = c->cfl * fmin(dt1, c->h / (c->cs0 + c->h * visc));
         if (!(dt >= c->dtmin)) {
             vres_error("unstable at step %ld, t = %.6g s: time step %g s below DtMin %g s (largest acceleration "
                        "%g m/s^2, viscous rate %g 1/s)", step + 1, t, dt, c->dtmin, amax, visc);
-            rc = stop_unstable(s, &w, c, dir, t, step);
+            rc = stop_unstable(s, b, c, r, f->dir, (size_t)-1, step, t, t, step);
             break;
         }
         if (c->verlet) {
             int euler = ++verlet_count >= c->verlet_steps;
             if (euler) verlet_count = 0;
-            if (interact_shift)
-                vres_shift_cpu(d->n, d->type, d->vel, w.shiftv, dt, c->shift_coef * c->h, c->shift_tfs, c->dim,
-                               0.1 * d->dp);
-            vres_sph_verlet_cpu(d->n, d->type, d->pos, d->vel, d->rho, w.velm1, w.rhom1, w.ace, w.ar, dt, euler,
-                                c->rho0);
-            if (interact_shift) apply_shift(d, w.shiftv);
-            move_walls(s, &w, d, t + dt);
-            vres_cells_wrap(&w.cells, d->pos, d->n);
-            if (c->mdbc && c->nnormal)
-                vres_mdbc_cpu(d->n, &w.cells, d->pos, d->rho, d->mass_p, d->type, d->normal, C, c->dim);
-            if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
-                diagnose(d, &w.cells, c, bad, step + 1, t + dt);
-                rc = stop_unstable(s, &w, c, dir, t, step);
-                break;
-            }
+            b->verlet(b, dt, euler, c->shift != 0);
+            wall_motion(s, mv0, t + dt, mv);
+            b->move_walls(b, mv);
+            b->wrap(b);
+            b->mdbc(b);
         } else {
-            vres_sph_predict_cpu(d->n, d->type, w.pos0, w.vel0, w.rho0, w.ace, w.ar, d->pos, d->vel, d->rho, dt,
-                                 c->rho0);
-            move_walls(s, &w, d, t + 0.5 * dt);
-            vres_cells_wrap(&w.cells, d->pos, d->n);
-            if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
-                diagnose(d, &w.cells, c, bad, step + 1, t + 0.5 * dt);
-                rc = stop_unstable(s, &w, c, dir, t, step);
+            b->predict(b, dt);
+            wall_motion(s, mv0, t + 0.5 * dt, mv);
+            b->move_walls(b, mv);
+            b->wrap(b);
+            size_t nmid, badmid = b->check(b, &nmid);
+            if (badmid != (size_t)-1) {
+                rc = stop_unstable(s, b, c, r, f->dir, badmid, step + 1, t + 0.5 * dt, t, step);
                 break;
             }
-            if (sort_by_cell(&w, d, 1) != 0) { rc = VRES_RUN_FAIL; break; }
-            forces(&w, d, interact, interact_shift, &C, c, &visc);
-            /* shifting from the predicted state's velocity and concentration gradient, added in the
-               corrector (DualSPHysics' ComputeSymplecticCorr) */
-            if (interact_shift)
-                vres_shift_cpu(d->n, d->type, d->vel, w.shiftv, dt, c->shift_coef * c->h, c->shift_tfs, c->dim,
-                               0.1 * d->dp);
-            vres_sph_correct_cpu(d->n, d->type, w.pos0, w.vel0, w.rho0, w.ace, w.ar, d->pos, d->vel, d->rho, dt,
-                                 c->rho0);
-            if (interact_shift) apply_shift(d, w.shiftv);
-            move_walls(s, &w, d, t + dt);
-            vres_cells_wrap(&w.cells, d->pos, d->n);
+            /* particles that left the domain in the predictor are sorted after every cell, where
+               no neighbour sees them; the corrector decides (they are excluded after the step) */
+            if (b->sort(b, 1) != 0) { rc = VRES_RUN_FAIL; break; }
+            b->forces(b, c->shift != 0, &visc);
+            b->correct(b, dt, c->shift != 0);
+            wall_motion(s, mv0, t + dt, mv);
+            b->move_walls(b, mv);
+            b->wrap(b);
             /* mDBC wall densities follow the fluid, not the continuity equation: set them for the
                state the step ends with (the cells of the predicted state still hold every
                neighbour but those at the kernel's edge, where W vanishes) */
-            if (c->mdbc && c->nnormal)
-                vres_mdbc_cpu(d->n, &w.cells, d->pos, d->rho, d->mass_p, d->type, d->normal, C, c->dim);
-            if ((bad = find_bad(d, &w.cells, c)) != (size_t)-1) {
-                diagnose(d, &w.cells, c, bad, step + 1, t + dt);
-                rc = stop_unstable(s, &w, c, dir, t, step);
-                break;
-            }
+            b->mdbc(b);
         }
+        double nex = r->nexcluded;
+        if ((rc = after_step(s, b, c, r, f, t + dt, step + 1, t, step)) != VRES_RUN_OK) break;
+        if (r->nexcluded != nex) verlet_count = c->verlet_steps - 1; /* the previous step is gone: Euler next */
         t += dt;
         step++;
         progress(c, &clk, s->time, t, step, dt, 0);
-        if (t >= next_out * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12)) {
-            if (output(s, c, dir, tsv, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
-            while (next_out <= t * (1 + 1e-9)) next_out += c->tout;
+        if (t >= (r->t0 + r->next_due * c->tout) * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12)) {
+            while (r->t0 + r->next_due * c->tout <= t * (1 + 1e-9)) r->next_due++;
+            if (output(s, b, c, r, f, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
+        }
+        if (rc == VRES_RUN_OK && (stop_asked || (ckpt_s > 0 && wall_now() - clk.last_ckpt >= ckpt_s))) {
+            if (checkpoint(s, b, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+            else if (stop_asked) {
+                vres_error("interrupted at t = %.6g s, step %ld: state written to %s/checkpoint.h5; continue with "
+                           "vres-run --restart %s/checkpoint.h5", t, step, f->dir, f->dir);
+                rc = VRES_RUN_FAIL;
+            }
         }
     }
     progress(c, &clk, s->time, t, step, dt, 1);
+    if (rc == VRES_RUN_OK && checkpoint(s, b, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
     if (rc == VRES_RUN_OK)
-        vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s", t, step - step_start,
-                  wall_now() - clk.start, clk.nout, dir);
-    work_free(&w);
+        vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s%s", t, step - step_start,
+                  wall_now() - clk.start, r->next_snap - nsnap0, f->dir,
+                  r->nexcluded > 0 ? " (particles excluded: see excluded.tsv)" : "");
+    free(mv0);
+    free(mv);
     return rc;
 }
+
+/* Keep the lines of text file path that are comments or whose column col (1-based, a step
+ * number) is at most step; drop the rest (a restart rewrites them). Atomic. 0, or -1 after
+ * printing why. A missing file is fine. */
+static int truncate_table(const char *path, int col, long step)
+{
+    FILE *in = fopen(path, "r");
+    if (!in) {
+        if (errno == ENOENT) return 0;
+        vres_error("%s: cannot read: %s", path, strerror(errno));
+        return -1;
+    }
+    vres_outfile out;
+    if (vres_out_begin(&out, path) != 0) {
+        fclose(in);
+        return -1;
+    }
+    FILE *o = fopen(out.tmp, "w");
+    if (!o) {
+        vres_error("%s: cannot write: %s", out.tmp, strerror(errno));
+        fclose(in);
+        vres_out_abort(&out);
+        return -1;
+    }
+    char *line = NULL;
+    size_t cap = 0;
+    while (getline(&line, &cap, in) > 0) {
+        const char *p = line;
+        for (int k = 1; k < col && p; k++) p = strchr(p, '\t') ? strchr(p, '\t') + 1 : NULL;
+        if (line[0] == '#' || (p && strtol(p, NULL, 10) <= step)) fputs(line, o);
+    }
+    free(line);
+    fclose(in);
+    if (fclose(o) != 0) {
+        vres_error("%s: write failed", out.tmp);
+        vres_out_abort(&out);
+        return -1;
+    }
+    return vres_out_commit(&out);
+}
+
+/* Make the run directory (and parents) and check it can take the run: a new run needs one
+ * without run.tsv; a restart from the state at step `step` with next snapshot number
+ * next_snap keeps what came before and removes what the restart rewrites (later snapshots,
+ * run.tsv and excluded.tsv lines, snap_last_good.h5). 0, or -1 after printing why. Nothing is
+ * created or removed when the path cannot be a run directory. */
+static int prepare_rundir(const char *dir, int restart, long step, int next_snap)
+{
+    struct stat st;
+    if (stat(dir, &st) != 0) return vres_mkdirs(dir);
+    if (!S_ISDIR(st.st_mode)) {
+        vres_error("%s: exists and is not a directory", dir);
+        return -1;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        vres_error("%s: directory not writable: %s", dir, strerror(errno));
+        return -1;
+    }
+    char *tsv = vres_xasprintf("%s/run.tsv", dir);
+    int taken = access(tsv, F_OK) == 0;
+    if (taken && !restart) {
+        vres_error("%s: already holds a run (run.tsv): remove it, choose another -o, or continue it with --restart "
+                   "%s/snap_NNNNN.h5", dir, dir);
+        free(tsv);
+        return -1;
+    }
+    int rc = 0;
+    if (restart) {
+        char *ex = vres_xasprintf("%s/excluded.tsv", dir), *lg = vres_xasprintf("%s/snap_last_good.h5", dir);
+        rc = truncate_table(tsv, 2, step) || truncate_table(ex, 2, step);
+        if (!rc && unlink(lg) == 0) vres_info("removed %s (the restart replaces it)", lg);
+        int removed = 0;
+        for (int k = next_snap; !rc; k++) {
+            char *snap = vres_xasprintf("%s/snap_%05d.h5", dir, k);
+            int gone = unlink(snap) == 0;
+            free(snap);
+            if (!gone) break;
+            removed++;
+        }
+        if (removed)
+            vres_info("removed snap_%05d.h5 .. snap_%05d.h5 and the later lines of run.tsv (the restart rewrites them)",
+                      next_snap, next_snap + removed - 1);
+        free(ex);
+        free(lg);
+    }
+    free(tsv);
+    return rc;
+}
+
+/* What a restart reads from its snapshot into r: 0, or -1 after printing why (not a
+ * snapshot of vres-run, or nothing left to run). */
+static int read_resume(const vres_store *s, const run_cfg *c, run_resume *r)
+{
+    const char *names[] = {"run_t0", "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded"};
+    double v[5];
+    for (int k = 0; k < 5; k++) {
+        const vres_param *p = vres_params_find(&s->params, names[k]);
+        if (!p || p->n < 1) {
+            vres_error("the store has no parameter %s: --restart needs a snapshot or checkpoint.h5 written by "
+                       "vres-run (run the store without --restart to start a run)", names[k]);
+            return -1;
+        }
+        v[k] = p->v[0];
+    }
+    r->t0 = v[0], r->next_due = (int)v[1], r->next_snap = (int)v[2], r->nfluid0 = v[3], r->nexcluded = v[4];
+    if (!(s->time < c->tmax * (1 - 1e-12))) {
+        vres_error("the snapshot is at t = %g s, at or past the end time %g s: give a later --tmax", s->time, c->tmax);
+        return -1;
+    }
+    return 0;
+}
+
+#ifndef VRES_HAVE_CUDA_SOLVER
+/* A build without the CUDA backend (no nvcc): --device cuda is refused earlier by
+ * vres_device_pick; this answers anything that gets here. */
+int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c)
+{
+    (void)b, (void)s, (void)d, (void)c;
+    vres_error("this build has no CUDA solver (built without nvcc): use --device cpu");
+    return -1;
+}
+#endif
 
 /* Check, pick the device, prepare the run directory and its table, then run the time loop. */
 int vres_solver_run(vres_store *s, const vres_run_opts *o)
 {
     run_cfg c;
     vres_device dev;
+    run_resume r = {s->time, 1, 0, 0, 0};
     if (read_config(s, o, &c) != 0) return VRES_RUN_FAIL;
-    if (vres_device_pick(o->device ? o->device : "auto", &dev) != 0) return VRES_RUN_FAIL;
-    if (dev == VRES_DEV_CUDA) {
-        if (o->device && !strcmp(o->device, "cuda")) {
-            vres_error("CUDA solver not implemented yet: use --device cpu");
-            return VRES_RUN_FAIL;
-        }
-        vres_info("CUDA solver not implemented yet: running on the CPU");
+    if (o->restart && read_resume(s, &c, &r) != 0) return VRES_RUN_FAIL;
+    if (o->restart && fabs(vres_params_get(&s->params, "TimeOut", c.tout) - c.tout) > 1e-12 * c.tout) {
+        vres_info("--tout %g differs from the run's TimeOut %g: outputs now every %g s from t = %g s", c.tout,
+                  vres_params_get(&s->params, "TimeOut", c.tout), c.tout, s->time);
+        r.t0 = s->time, r.next_due = 1;
     }
+    if (!o->restart) r.nfluid0 = (double)c.nfluid;
+    if (vres_device_pick(o->device ? o->device : "auto", &dev) != 0) return VRES_RUN_FAIL;
     if (o->threads > 0) omp_set_num_threads(o->threads);
     c.threads = omp_get_max_threads();
-    if (prepare_rundir(o->rundir) != 0) return VRES_RUN_FAIL;
-    char *mods = modules(&c);
-    vres_info("%zu fluid + %zu wall particles, h %g m, c0 %g m/s, to t = %g s, output every %g s", c.nfluid, c.nwall,
-              c.h, c.cs0, c.tmax, c.tout);
+    if (prepare_rundir(o->rundir, o->restart, s->step, r.next_snap) != 0) return VRES_RUN_FAIL;
+    vres_backend b;
+    vres_domain *d = &s->dom[0];
+    if ((dev == VRES_DEV_CUDA ? vres_backend_cuda_open(&b, s, d, &c) : vres_backend_cpu_open(&b, s, d, &c)) != 0)
+        return VRES_RUN_FAIL;
+    char *mods = modules(&c, dev == VRES_DEV_CUDA ? b.name : NULL);
+    vres_info("%zu fluid + %zu wall particles, h %g m, c0 %g m/s, %s t = %g s to %g s, output every %g s", c.nfluid,
+              c.nwall, c.h, c.cs0, o->restart ? "restart from" : "from", s->time, c.tmax, c.tout);
     vres_info("modules: %s", mods);
     vres_params_set_str(&s->params, "modules", mods, "run");
     if (o->tmax > 0) vres_params_set1(&s->params, "TimeMax", c.tmax, "s", "set");
@@ -900,17 +880,34 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     vres_store_add_history(s, o->cmdline ? o->cmdline : "vres-run");
 
     char *tsvpath = vres_xasprintf("%s/run.tsv", o->rundir);
-    FILE *tsv = fopen(tsvpath, "w");
-    if (!tsv) {
+    int fresh = access(tsvpath, F_OK) != 0;
+    run_files f = {o->rundir, fopen(tsvpath, "a"), NULL};
+    if (!f.tsv) {
         vres_error("%s: cannot write: %s", tsvpath, strerror(errno));
         free(tsvpath);
+        b.close(&b);
         return VRES_RUN_FAIL;
     }
-    fprintf(tsv, "# time_s\tstep\tdt_s\tn_fluid\tn_wall\tmass_fluid_kg\tmax_speed_m_s\trho_min_kg_m3\trho_max_kg_m3"
-                 "\twall_s\tparticle_steps_per_s\n");
-    int rc = time_loop(s, &c, o->rundir, tsv);
-    if (fclose(tsv) != 0 && rc == VRES_RUN_OK) {
+    if (fresh)
+        fprintf(f.tsv, "# time_s\tstep\tdt_s\tn_fluid\tn_wall\tmass_fluid_kg\tmax_speed_m_s\trho_min_kg_m3\t"
+                       "rho_max_kg_m3\twall_s\tparticle_steps_per_s\tn_excluded\tpairs\tinteractions_per_s\n");
+    struct sigaction sa, old_int, old_term;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, &old_int);
+    sigaction(SIGTERM, &sa, &old_term);
+    stop_asked = 0;
+    int rc = time_loop(s, &b, &c, &r, &f, o->checkpoint, o->restart);
+    sigaction(SIGINT, &old_int, NULL);
+    sigaction(SIGTERM, &old_term, NULL);
+    if (b.download(&b, d) != 0 && rc == VRES_RUN_OK) rc = VRES_RUN_FAIL;
+    b.close(&b);
+    if (fclose(f.tsv) != 0 && rc == VRES_RUN_OK) {
         vres_error("%s: write failed", tsvpath);
+        rc = VRES_RUN_FAIL;
+    }
+    if (f.excl && fclose(f.excl) != 0 && rc == VRES_RUN_OK) {
+        vres_error("%s/excluded.tsv: write failed", o->rundir);
         rc = VRES_RUN_FAIL;
     }
     free(tsvpath);

@@ -21,6 +21,8 @@ typedef struct vres_run_opts {
     int threads;         /* OpenMP threads; <= 0: OpenMP's default */
     const char *rundir;  /* run directory to create or fill (must not hold a run already) */
     const char *cmdline; /* full command line, prepended to each snapshot's history */
+    int restart;         /* 1: the store is a snapshot of vres-run's to continue (--restart) */
+    double checkpoint;   /* wall-clock seconds between checkpoint.h5 writes; <= 0: only at the end and on a signal */
 } vres_run_opts;
 
 /* Check that the store is one this solver runs (refusing anything it would have to ignore)

@@ -4,7 +4,8 @@
 # used for bad-input tests so that a crash or memory error fails the test).
 set -u
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-BIN=$ROOT/bin
+BIN=${VRES_BIN:-$ROOT/bin}          # make check B=... BINDIR=... tests another build's tools
+export VRES_BIN=$BIN               # and the pipelines' scripts (pipelines/vreslib.sh) use the same
 VRES_BUILD=${VRES_BUILD:-build}
 ASAN=$ROOT/$VRES_BUILD/asan/bin
 CASES=$ROOT/cases

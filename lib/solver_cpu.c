@@ -1,0 +1,471 @@
+/* solver_cpu.c - the CPU backend of vres-run (solver_int.h's vres_backend): the store's own
+ * particle arrays, sorted by cell with lib/cells.c and stepped by the OpenMP loops of
+ * kernels/ (sph.h, mdbc.h, eos.h), with the interaction variant picked once for the scene. */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../kernels/eos.h"
+#include "../kernels/mdbc.h"
+#include "../kernels/sph.h"
+#include "cells.h"
+#include "log.h"
+#include "solver_int.h"
+
+/* One interaction loop variant (kernels/sph.h), chosen once per run. */
+typedef void (*interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel, const float *rho,
+                            const float *press, const double *mass, const uint8_t *type, vres_sph_consts C,
+                            double *ace, double *ar, double *visc);
+
+/* One interaction loop variant with the shifting sums (kernels/sph.h). */
+typedef void (*interact_shift_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
+                                  const float *rho, const float *press, const double *mass, const uint8_t *type,
+                                  vres_sph_consts C, double *ace, double *ar, double *visc, double *shiftv);
+
+/* One 2D interaction loop variant (kernels/sph.h: vres_sph2d_*), over n = ncells + 1 cells. */
+typedef void (*interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
+                              double *ace, double *ar, double *visc, double *shiftv);
+
+/* The CPU backend's state: the domain's arrays are the store's; these are the rest. */
+typedef struct cpu_ctx {
+    const vres_store *s;  /* the store (bodies, for the moving walls) */
+    vres_domain *d;       /* the domain stepped, in cell order after each sort */
+    run_cfg c;            /* the run configuration */
+    vres_sph_consts C;    /* interaction constants */
+    vres_cells cells;     /* cell-linked list over the simulation domain, rebuilt each half step */
+    size_t cap;           /* particles the work arrays below have room for */
+    double *pos0;         /* [3n] positions at the step's start (m) */
+    float *vel0;          /* [3n] velocities at the step's start (m/s) */
+    float *rho0;          /* [n] densities at the step's start (kg/m^3) */
+    double *ace;          /* [3n] accelerations (m/s^2) */
+    double *ar;           /* [n] density rates (kg/m^3/s) */
+    double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
+    double *xref;         /* [3n] moving walls' reference positions (m); NULL without them */
+    float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
+    float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
+    double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
+    double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
+    float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
+    double *inv_rho;      /* [n] 2D: 1/density of each particle (m^3/kg) */
+    interact_fn interact;             /* 3D variant without shifting sums */
+    interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
+} cpu_ctx;
+
+/* The index of the moving body whose mkbound is mk, or -1. */
+static int body_of(const vres_store *s, int mk)
+{
+    for (size_t k = 0; k < s->nbodies; k++)
+        if (s->body[k].kind == VRES_MOVING && s->body[k].mkbound == mk) return (int)k;
+    return -1;
+}
+
+/* The interaction variant for this scene: no diffusion code when DensityDT=0, no wall tests
+ * when there are no walls, only the viscosity asked for. */
+static interact_fn pick_interaction(const run_cfg *c)
+{
+    static const interact_fn table[2][2][3] = {
+        {{vres_sph_plain_cpu, vres_sph_molteni_cpu, vres_sph_fourtakas_cpu},
+         {vres_sph_dbc_cpu, vres_sph_dbc_molteni_cpu, vres_sph_dbc_fourtakas_cpu}},
+        {{vres_sph_laminar_plain_cpu, vres_sph_laminar_molteni_cpu, vres_sph_laminar_fourtakas_cpu},
+         {vres_sph_laminar_dbc_cpu, vres_sph_laminar_dbc_molteni_cpu, vres_sph_laminar_dbc_fourtakas_cpu}}};
+    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
+/* The shifting variant of pick_interaction's choice. */
+static interact_shift_fn pick_interaction_shift(const run_cfg *c)
+{
+    static const interact_shift_fn table[2][2][3] = {
+        {{vres_sph_shift_plain_cpu, vres_sph_shift_molteni_cpu, vres_sph_shift_fourtakas_cpu},
+         {vres_sph_shift_dbc_cpu, vres_sph_shift_dbc_molteni_cpu, vres_sph_shift_dbc_fourtakas_cpu}},
+        {{vres_sph_shift_laminar_plain_cpu, vres_sph_shift_laminar_molteni_cpu, vres_sph_shift_laminar_fourtakas_cpu},
+         {vres_sph_shift_laminar_dbc_cpu, vres_sph_shift_laminar_dbc_molteni_cpu,
+          vres_sph_shift_laminar_dbc_fourtakas_cpu}}};
+    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
+/* The 2D variant for this scene, with the shifting sums when shift is 1. */
+static interact2d_fn pick_interaction2d(const run_cfg *c, int shift)
+{
+    static const interact2d_fn table[2][2][2][3] = {
+        {{{vres_sph2d_plain_cpu, vres_sph2d_molteni_cpu, vres_sph2d_fourtakas_cpu},
+          {vres_sph2d_dbc_cpu, vres_sph2d_dbc_molteni_cpu, vres_sph2d_dbc_fourtakas_cpu}},
+         {{vres_sph2d_laminar_plain_cpu, vres_sph2d_laminar_molteni_cpu, vres_sph2d_laminar_fourtakas_cpu},
+          {vres_sph2d_laminar_dbc_cpu, vres_sph2d_laminar_dbc_molteni_cpu, vres_sph2d_laminar_dbc_fourtakas_cpu}}},
+        {{{vres_sph2d_shift_plain_cpu, vres_sph2d_shift_molteni_cpu, vres_sph2d_shift_fourtakas_cpu},
+          {vres_sph2d_shift_dbc_cpu, vres_sph2d_shift_dbc_molteni_cpu, vres_sph2d_shift_dbc_fourtakas_cpu}},
+         {{vres_sph2d_shift_laminar_plain_cpu, vres_sph2d_shift_laminar_molteni_cpu,
+           vres_sph2d_shift_laminar_fourtakas_cpu},
+          {vres_sph2d_shift_laminar_dbc_cpu, vres_sph2d_shift_laminar_dbc_molteni_cpu,
+           vres_sph2d_shift_laminar_dbc_fourtakas_cpu}}}};
+    return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
+/* The context of backend b. */
+static cpu_ctx *ctx_of(vres_backend *b)
+{
+    return (cpu_ctx *)b->ctx;
+}
+
+/* Sort by cell, carrying the run's own per-particle arrays (and the step start mid-step). */
+static int cpu_sort(vres_backend *b, int carry)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    vres_cells_build(&x->cells, d->pos, d->n);
+    if (vres_cells_reorder(&x->cells, d) != 0) return -1;
+    if (x->xref) vres_cells_gather(&x->cells, x->xref, 3 * sizeof(double));
+    if (x->velm1) vres_cells_gather(&x->cells, x->velm1, 3 * sizeof(float));
+    if (x->rhom1) vres_cells_gather(&x->cells, x->rhom1, sizeof(float));
+    if (!carry) return 0;
+    vres_cells_gather(&x->cells, x->pos0, 3 * sizeof(double));
+    vres_cells_gather(&x->cells, x->vel0, 3 * sizeof(float));
+    vres_cells_gather(&x->cells, x->rho0, sizeof(float));
+    return 0;
+}
+
+/* Keep the current state as the step's start. */
+static void cpu_save_start(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    memcpy(x->pos0, d->pos, 3 * d->n * sizeof *d->pos);
+    memcpy(x->vel0, d->vel, 3 * d->n * sizeof *d->vel);
+    memcpy(x->rho0, d->rho, d->n * sizeof *d->rho);
+}
+
+/* Put the step's start back. */
+static void cpu_restore_start(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    memcpy(d->pos, x->pos0, 3 * d->n * sizeof *d->pos);
+    memcpy(d->vel, x->vel0, 3 * d->n * sizeof *d->vel);
+    memcpy(d->rho, x->rho0, d->n * sizeof *d->rho);
+}
+
+/* mDBC wall densities for the current positions. */
+static void cpu_mdbc(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    if (x->c.mdbc && x->c.nnormal)
+        vres_mdbc_cpu(d->n, &x->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, x->C, x->c.dim);
+}
+
+/* mDBC, EOS, then the interaction at the current (cell-sorted) state. */
+static double cpu_forces(vres_backend *b, int shift, double *visc_max)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    const run_cfg *c = &x->c;
+    cpu_mdbc(b);
+    vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
+    if (c->dim == 2) {
+        size_t n = d->n;
+        double *px = x->x2d, *pz = x->x2d + n, *ir = x->inv_rho;
+        float *vx = x->v2d, *vz = x->v2d + n;
+        const double *pos = d->pos;
+        const float *vel = d->vel, *rho = d->rho;
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            px[i] = pos[3 * i], pz[i] = pos[3 * i + 2];
+            vx[i] = vel[3 * i], vz[i] = vel[3 * i + 2];
+            ir[i] = 1.0 / rho[i];
+        }
+        vres_sph_2d P = {px, pz, vx, vz, d->rho, d->press, ir, d->mass_p, d->type};
+        if (c->general)
+            vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
+                                   c->ddt, c->nwall > 0, c->visco_kind, shift);
+        else
+            pick_interaction2d(c, shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
+                                         x->shiftv);
+    } else if (c->general)
+        vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
+                             x->ar, x->visc, x->shiftv, c->ddt, c->nwall > 0, c->visco_kind, shift);
+    else if (shift)
+        x->interact_shift(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
+                          x->ar, x->visc, x->shiftv);
+    else
+        x->interact(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace, x->ar,
+                    x->visc);
+    double amax2 = 0, vmax = 0;
+    const double *ace = x->ace, *visc = x->visc;
+    const uint8_t *type = d->type;
+#pragma omp parallel for reduction(max : amax2, vmax) schedule(static)
+    for (size_t i = 0; i < d->n; i++) {
+        if (visc[i] > vmax) vmax = visc[i];
+        if (type[i] != VRES_FLUID) continue;
+        double a2 = ace[3 * i] * ace[3 * i] + ace[3 * i + 1] * ace[3 * i + 1] + ace[3 * i + 2] * ace[3 * i + 2];
+        if (a2 > amax2) amax2 = a2;
+    }
+    *visc_max = vmax;
+    return sqrt(amax2);
+}
+
+/* Symplectic predictor. */
+static void cpu_predict(vres_backend *b, double dt)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    vres_sph_predict_cpu(d->n, d->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, d->pos, d->vel, d->rho, dt,
+                         x->c.rho0);
+}
+
+/* The shifting displacement from the last sums and the current velocity (before the update). */
+static void shift_compute(cpu_ctx *x, double dt)
+{
+    vres_domain *d = x->d;
+    vres_shift_cpu(d->n, d->type, d->vel, x->shiftv, dt, x->c.shift_coef * x->c.h, x->c.shift_tfs, x->c.dim,
+                   0.1 * d->dp);
+}
+
+/* Move each fluid particle by its shifting displacement (shiftv[4i..4i+2], m; zero elsewhere). */
+static void shift_apply(cpu_ctx *x)
+{
+    vres_domain *d = x->d;
+    const double *sv = x->shiftv;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < d->n; i++)
+        for (int k = 0; k < 3; k++) d->pos[3 * i + k] += sv[4 * i + k];
+}
+
+/* Symplectic corrector, with the shifting of the predicted state (DualSPHysics'
+ * ComputeSymplecticCorr: displacement from the predicted velocity, added after the update). */
+static void cpu_correct(vres_backend *b, double dt, int shift)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    if (shift) shift_compute(x, dt);
+    vres_sph_correct_cpu(d->n, d->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, d->pos, d->vel, d->rho, dt,
+                         x->c.rho0);
+    if (shift) shift_apply(x);
+}
+
+/* One Verlet step. */
+static void cpu_verlet(vres_backend *b, double dt, int euler, int shift)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    if (shift) shift_compute(x, dt);
+    vres_sph_verlet_cpu(d->n, d->type, d->pos, d->vel, d->rho, x->velm1, x->rhom1, x->ace, x->ar, dt, euler,
+                        x->c.rho0);
+    if (shift) shift_apply(x);
+}
+
+/* Moving walls to their bodies' transforms mv, with the rigid velocity field. */
+static void cpu_move_walls(vres_backend *b, const vres_motion_state *mv)
+{
+    cpu_ctx *x = ctx_of(b);
+    if (!x->xref) return;
+    vres_domain *d = x->d;
+    const vres_store *s = x->s;
+    const double *xr = x->xref;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->type[i] != VRES_MOVING) continue;
+        const vres_motion_state *m = &mv[body_of(s, d->mk[i])];
+        double *p = &d->pos[3 * i], r[3];
+        for (int a = 0; a < 3; a++)
+            p[a] = m->R[3 * a] * xr[3 * i] + m->R[3 * a + 1] * xr[3 * i + 1] + m->R[3 * a + 2] * xr[3 * i + 2] +
+                   m->d[a];
+        for (int a = 0; a < 3; a++) r[a] = p[a] - m->p[a];
+        d->vel[3 * i] = (float)(m->v[0] + m->w[1] * r[2] - m->w[2] * r[1]);
+        d->vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
+        d->vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
+    }
+}
+
+/* Wrap along the periodic axes. */
+static void cpu_wrap(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_cells_wrap(&x->cells, x->d->pos, x->d->n);
+}
+
+/* The first fatal slot, and the particles that left the box. */
+static size_t cpu_check(vres_backend *b, size_t *nout)
+{
+    cpu_ctx *x = ctx_of(b);
+    const vres_domain *d = x->d;
+    const run_cfg *c = &x->c;
+    size_t first = (size_t)-1, out = 0;
+    int check_rho = c->rhop_min < c->rhop_max;
+#pragma omp parallel for reduction(min : first) reduction(+ : out) schedule(static)
+    for (size_t i = 0; i < d->n; i++) {
+        const double *p = &d->pos[3 * i];
+        int ok = isfinite(d->rho[i]) && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+        for (int k = 0; k < 3; k++) ok = ok && isfinite(d->vel[3 * i + k]);
+        if (ok && check_rho && d->type[i] == VRES_FLUID) ok = d->rho[i] >= c->rhop_min && d->rho[i] <= c->rhop_max;
+        int ijk[3];
+        if (ok && !vres_cells_locate(&x->cells, p, ijk)) out++;
+        if (!ok && i < first) first = i;
+    }
+    *nout = out;
+    return first;
+}
+
+/* The store's arrays are the backend's: only the count to settle. */
+static int cpu_download(vres_backend *b, vres_domain *d)
+{
+    d->n = b->n;
+    return 0;
+}
+
+/* Take the (compacted) domain back: the count and the moving walls' reference. */
+static int cpu_upload(vres_backend *b, const vres_domain *d, const double *xref)
+{
+    cpu_ctx *x = ctx_of(b);
+    if (d != x->d || d->n > x->cap) {
+        vres_error("cpu backend: upload of a domain other than the one opened, or grown (%zu > %zu particles)", d->n,
+                   x->cap);
+        return -1;
+    }
+    b->n = d->n;
+    if (x->xref && xref && xref != x->xref) memcpy(x->xref, xref, 3 * d->n * sizeof *xref);
+    if (x->velm1) memcpy(x->velm1, d->vel, 3 * d->n * sizeof *x->velm1);
+    if (x->rhom1) memcpy(x->rhom1, d->rho, d->n * sizeof *x->rhom1);
+    return 0;
+}
+
+/* The moving walls' reference positions in slot order. */
+static void cpu_get_xref(vres_backend *b, double *xref)
+{
+    cpu_ctx *x = ctx_of(b);
+    if (x->xref && xref != x->xref) memcpy(xref, x->xref, 3 * x->d->n * sizeof *xref);
+}
+
+/* Ordered pairs within 2h (cells as of the last sort; positions now). */
+static size_t cpu_count_pairs(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    const vres_domain *d = x->d;
+    const vres_cells *g = &x->cells;
+    const double r2max = x->C.fourh2;
+    size_t total = 0;
+    if (g->n != d->n) return 0;
+#pragma omp parallel for reduction(+ : total) schedule(dynamic, 256)
+    for (size_t a = 0; a < d->n; a++) {
+        vres_cell_range nb[27];
+        const double *pa = &d->pos[3 * a];
+        int m = vres_cells_neighbours(g, pa, nb);
+        for (int k = 0; k < m; k++)
+            for (size_t j = nb[k].begin; j < nb[k].end; j++) {
+                if (j == a && !nb[k].shift[0] && !nb[k].shift[1] && !nb[k].shift[2]) continue;
+                double r2 = 0;
+                for (int q = 0; q < 3; q++) {
+                    if (q == 1 && g->dim == 2) continue;
+                    double dq = pa[q] - (d->pos[3 * j + q] + nb[k].shift[q]);
+                    r2 += dq * dq;
+                }
+                total += r2 < r2max;
+            }
+    }
+    return total;
+}
+
+/* Free the work arrays. */
+static void cpu_close(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    if (!x) return;
+    vres_cells_free(&x->cells);
+    free(x->pos0);
+    free(x->vel0);
+    free(x->rho0);
+    free(x->ace);
+    free(x->ar);
+    free(x->visc);
+    free(x->xref);
+    free(x->shiftv);
+    free(x->x2d);
+    free(x->v2d);
+    free(x->inv_rho);
+    free(x->velm1);
+    free(x->rhom1);
+    free(x);
+    b->ctx = NULL;
+}
+
+vres_sph_consts vres_run_consts(const run_cfg *c)
+{
+    vres_sph_consts C;
+    memset(&C, 0, sizeof C);
+    C.k = vres_wendland_make(c->dim, c->h);
+    C.h = c->h;
+    C.fourh2 = 4.0 * c->h * c->h;
+    C.eta2 = 0.01 * c->h * c->h;
+    C.cs0 = c->cs0;
+    int lam = c->visco_kind == VRES_VISC_LAMINAR;
+    C.alpha = lam ? 0 : c->visco;
+    C.alpha_wall = lam ? 0 : c->visco * c->visco_bound;
+    C.nu = lam ? c->visco : 0;
+    C.nu_wall = lam ? c->visco * c->visco_bound : 0;
+    C.shift_mode = c->shift;
+    C.ddt_khc = 2.0 * c->h * c->ddt_delta * c->cs0;
+    C.rho0 = c->rho0;
+    C.rho0_over_B = c->rho0 / c->B;
+    C.inv_gamma = 1.0 / c->gamma;
+    memcpy(C.g, c->g, sizeof C.g);
+    return C;
+}
+
+int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c)
+{
+    cpu_ctx *x = vres_xcalloc(1, sizeof *x);
+    size_t n = d->n;
+    x->s = s;
+    x->d = d;
+    x->c = *c;
+    x->C = vres_run_consts(c);
+    x->cap = n;
+    if (vres_cells_init(&x->cells, c->dim, 2.0 * c->h, c->box_lo, c->box_hi, c->periodic) != 0) {
+        free(x);
+        return -1;
+    }
+    x->pos0 = vres_xmalloc(3 * n * sizeof *x->pos0 + 1);
+    x->vel0 = vres_xmalloc(3 * n * sizeof *x->vel0 + 1);
+    x->rho0 = vres_xmalloc(n * sizeof *x->rho0 + 1);
+    x->ace = vres_xcalloc(3 * n + 1, sizeof *x->ace);
+    x->ar = vres_xcalloc(n + 1, sizeof *x->ar);
+    x->visc = vres_xcalloc(n + 1, sizeof *x->visc);
+    if (c->shift) x->shiftv = vres_xcalloc(4 * n + 1, sizeof *x->shiftv);
+    if (c->dim == 2) {
+        x->x2d = vres_xmalloc(2 * n * sizeof *x->x2d + 1);
+        x->v2d = vres_xmalloc(2 * n * sizeof *x->v2d + 1);
+        x->inv_rho = vres_xmalloc(n * sizeof *x->inv_rho + 1);
+    }
+    if (c->verlet) { /* the previous step of the first is the start itself, as DualSPHysics */
+        x->velm1 = vres_xmalloc(3 * n * sizeof *x->velm1 + 1);
+        x->rhom1 = vres_xmalloc(n * sizeof *x->rhom1 + 1);
+        memcpy(x->velm1, d->vel, 3 * n * sizeof *x->velm1);
+        memcpy(x->rhom1, d->rho, n * sizeof *x->rhom1);
+    }
+    if (c->nmoving) {
+        x->xref = vres_xmalloc(3 * n * sizeof *x->xref + 1);
+        memcpy(x->xref, d->pos, 3 * n * sizeof *x->xref);
+    }
+    x->interact = pick_interaction(c);
+    x->interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
+    memset(b, 0, sizeof *b);
+    b->ctx = x;
+    b->n = n;
+    b->name = "cpu-openmp";
+    b->sort = cpu_sort;
+    b->save_start = cpu_save_start;
+    b->restore_start = cpu_restore_start;
+    b->forces = cpu_forces;
+    b->predict = cpu_predict;
+    b->correct = cpu_correct;
+    b->verlet = cpu_verlet;
+    b->move_walls = cpu_move_walls;
+    b->wrap = cpu_wrap;
+    b->mdbc = cpu_mdbc;
+    b->check = cpu_check;
+    b->download = cpu_download;
+    b->upload = cpu_upload;
+    b->get_xref = cpu_get_xref;
+    b->count_pairs = cpu_count_pairs;
+    b->close = cpu_close;
+    return 0;
+}

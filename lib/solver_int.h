@@ -1,0 +1,130 @@
+/* solver_int.h - what the solver's time loop (solver.c) shares with its backends: the resolved
+ * run configuration, and the operations of a time step that each backend implements where its
+ * particle data live (solver_cpu.c: the store's own arrays with OpenMP; solver_cuda.cu: device
+ * arrays). The time loop only calls these operations, so the same step sequence, output,
+ * exclusion and restart logic runs on both devices. Internal to libvres. */
+#ifndef VRES_SOLVER_INT_H
+#define VRES_SOLVER_INT_H
+
+#include <stddef.h>
+
+#include "../kernels/sph.h"
+#include "solver_motion.h"
+#include "store.h"
+
+#ifdef __cplusplus
+extern "C" { /* also read by the CUDA backend (.cu, compiled as C++) */
+#endif
+
+/* The resolved run configuration: every parameter the solver uses, checked once. */
+typedef struct run_cfg {
+    int dim;              /* 2 (x-z plane) or 3 */
+    double h;             /* smoothing length (m) */
+    double rho0;          /* reference density (kg/m^3) */
+    double gamma;         /* Tait exponent */
+    double B;             /* Tait stiffness (Pa) */
+    double cs0;           /* reference speed of sound (m/s) */
+    double cfl;           /* CFL number of the variable time step, in (0, 1] */
+    int visco_kind;       /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment) */
+    double visco;         /* Visco: artificial viscosity alpha, or laminar kinematic viscosity (m^2/s) */
+    double visco_bound;   /* ViscoBoundFactor: multiplies Visco for fluid-wall pairs */
+    int ddt;              /* VRES_DDT_* density diffusion kind */
+    double ddt_delta;     /* its coefficient delta */
+    double g[3];          /* gravity (m/s^2) */
+    double tmax;          /* end time (s) */
+    double tout;          /* time between snapshots (s) */
+    double dtmin;         /* time steps below this (s) stop the run as unstable */
+    double rhop_min;      /* fluid density below this (kg/m^3) is a blow-up (when < rhop_max) */
+    double rhop_max;      /* fluid density above this (kg/m^3) is a blow-up */
+    int periodic[3];      /* 1 on the axes that wrap (parameter periodic) */
+    double box_lo[3];     /* lower corner of the cells' box (m): the simulation domain, widened on periodic axes */
+    double box_hi[3];     /* its upper corner (m); on a periodic axis hi - lo is the period */
+    size_t nfluid;        /* fluid particles */
+    size_t nwall;         /* wall particles (DBC), fixed and moving */
+    size_t nmoving;       /* of those, the walls with a prescribed motion */
+    int mdbc;             /* 1 for mDBC walls (Boundary=2), 0 for DBC */
+    int slip;             /* mDBC SlipMode: 1 wall velocity, 2 no-slip, 3 free slip */
+    int verlet;           /* 1 for Verlet (StepAlgorithm=1), 0 for Symplectic */
+    int verlet_steps;     /* VerletSteps: every this many steps one is an Euler step */
+    int shift;            /* Shifting: 0 none, 1 not near walls, 2 not near fixed walls, 3 everywhere */
+    double shift_coef;    /* ShiftCoef A of dr = A h |v| dt grad C (negative) */
+    double shift_tfs;     /* ShiftTFS: div r below this marks the free surface (0: no detection) */
+    size_t nnormal;       /* wall particles with a normal (those mDBC corrects) */
+    int threads;          /* OpenMP threads used */
+    double min_fluid;     /* MinFluidStop: the run stops when the fluid left is below this fraction of the start's */
+    int general;          /* 1: run the general loop (every option tested at run time; VRES_LOOP=general) */
+} run_cfg;
+
+/* The operations of one backend on one domain's particles, held where the backend computes.
+ * Between open and close the backend owns the particle state: the host copy in the store is
+ * current only after download. Slots are the backend's cell order; the store's arrays follow
+ * it on download (ids travel with the particles). Every call but open acts on b->ctx. */
+typedef struct vres_backend {
+    const char *name;     /* what the module list prints: "cpu-openmp(2 threads)", "cuda(NAME)" */
+    void *ctx;            /* the backend's own state */
+    size_t n;             /* particles it holds now */
+
+    /* Sort the particles by cell for their current positions; with carry 1 (mid-step) the
+     * step-start arrays follow. 0, or -1 after printing why. */
+    int (*sort)(struct vres_backend *b, int carry);
+    /* Keep the current positions, velocities and densities as the step's start. */
+    void (*save_start)(struct vres_backend *b);
+    /* Put the step-start state back (the last good state, before a stop). */
+    void (*restore_start)(struct vres_backend *b);
+    /* mDBC wall densities (when the scene has mDBC walls with normals), the EOS, then the
+     * interaction; with shift 1 the shifting sums too. Returns the largest fluid |a| (m/s^2)
+     * and the largest viscous rate in *visc_max (1/s). */
+    double (*forces)(struct vres_backend *b, int shift, double *visc_max);
+    /* Symplectic predictor over dt (s) from the step start with the last forces. */
+    void (*predict)(struct vres_backend *b, double dt);
+    /* Symplectic corrector over dt (s); with shift 1 the shifting displacement (computed from
+     * the last forces' sums and the predicted velocity) is added to the fluid positions. */
+    void (*correct)(struct vres_backend *b, double dt, int shift);
+    /* One Verlet step dt (s), an Euler step when euler is 1; shifting as correct. */
+    void (*verlet)(struct vres_backend *b, double dt, int euler, int shift);
+    /* Place the moving walls: x = R x_ref + d of their body's transform mv[k] (k the body's
+     * index in the store, from the start positions x_ref the backend keeps), velocity
+     * v + w x (x - p). Does nothing without moving walls. */
+    void (*move_walls)(struct vres_backend *b, const vres_motion_state *mv);
+    /* Wrap positions along the periodic axes. */
+    void (*wrap)(struct vres_backend *b);
+    /* mDBC wall densities for the current positions (nothing without mDBC walls). */
+    void (*mdbc)(struct vres_backend *b);
+    /* The first slot whose state is fatal (non-finite position, velocity or density, or a
+     * fluid density outside RhopOutMin..RhopOutMax), (size_t)-1 when none; *nout gets the
+     * number of particles with a finite state outside the cells' box (left the domain). */
+    size_t (*check)(struct vres_backend *b, size_t *nout);
+    /* Copy the particle state into the domain d (positions, velocities, densities and the
+     * order-carrying arrays: id, type, mk, mass, normal); d->n becomes b->n. 0 or -1. */
+    int (*download)(struct vres_backend *b, vres_domain *d);
+    /* Take the domain d back after the host changed it (particles removed: n may be smaller;
+     * the moving walls' reference positions xref[3 d->n] in d's order, NULL without moving
+     * walls). Verlet's previous-step velocities and densities restart from d's (the time loop
+     * makes the next step an Euler step, which does not read them). 0 or -1. */
+    int (*upload)(struct vres_backend *b, const vres_domain *d, const double *xref);
+    /* The moving walls' reference positions (m) in the current slot order into xref[3n]
+     * (for the host's compaction). Nothing without moving walls. */
+    void (*get_xref)(struct vres_backend *b, double *xref);
+    /* Ordered neighbour pairs (a, b != a) within 2h now (for the interactions-per-second figure). */
+    size_t (*count_pairs)(struct vres_backend *b);
+    /* Free everything the backend holds (b itself is the caller's). */
+    void (*close)(struct vres_backend *b);
+} vres_backend;
+
+/* The kernel and physics constants of the interaction for configuration c. */
+vres_sph_consts vres_run_consts(const run_cfg *c);
+
+/* Open the CPU backend over domain d of store s (the store's own arrays: d must live until
+ * close). Moving walls keep d's positions now as their reference. 0, or -1 after printing why. */
+int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c);
+
+/* Open the CUDA backend: upload domain d of store s (its moving walls' reference positions are
+ * d's positions now) and allocate the device work arrays. 0, or -1 after printing why (no
+ * GPU, out of device memory, or a build without CUDA). */
+int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
