@@ -1,5 +1,5 @@
 /* mdbc.h - modified dynamic boundary conditions (mDBC, English et al. 2022, DualSPHysics'
- * Boundary=2 with SlipMode=1), written once for the CPU and CUDA (see device.h).
+ * Boundary=2), written once for the CPU and CUDA (see device.h).
  *
  * Each wall particle with a normal n (store.h: the vector to the wall surface) has a ghost
  * node x_g = x_w + 2 n mirrored into the fluid. The fluid density there and its gradient
@@ -13,8 +13,23 @@
  * ill-conditioned (|det A| < 1e-3, DualSPHysics' limit for the first-order correction: few
  * fluid neighbours, as near a free surface) the Shepard sum rho_g = sum m W / sum V W is used
  * without the gradient; a ghost with no fluid around gives rho0. Walls without a normal keep
- * DBC behaviour (density from the continuity equation). The wall velocity is left alone
- * (SlipMode 1: the wall's own, zero or prescribed). */
+ * DBC behaviour (density from the continuity equation).
+ *
+ * The wall velocity depends on DualSPHysics' SlipMode (English et al. 2022, section 2.3):
+ *   1  the wall's own (motion) velocity, zero for a fixed wall: vres_mdbc_one leaves it alone;
+ *   2  no-slip: v_w = 2 v_m - v_g, so that the mean of wall and ghost is the wall's motion
+ *      velocity v_m: the fluid velocity, extended linearly through the wall face, meets v_m
+ *      there;
+ *   3  free slip: the ghost's velocity with its normal part mirrored about the wall's,
+ *      v_w = v_g + 2 ((v_m - v_g) . n^) n^: the tangential part is the fluid's (no shear
+ *      across the face), the normal part 2 v_m.n^ - v_g.n^ (no flow through it).
+ * v_g is the fluid velocity at the ghost node, by the same sums as the density: Shepard,
+ * v_g = sum V W v / sum V W (vorder 0, what DualSPHysics 5.0 to 5.4 do, JSphCpu.cpp and
+ * JSphGpu_ker.cu "ghost node velocity (0th order)"), or the first-order corrected estimate
+ * (vorder 1: the solution of A s = sum_b V_b v_b [W; grad W], exact for a linear velocity
+ * field, where the density uses the correction too; Shepard where it does not). A ghost
+ * with no fluid around gives the wall its motion velocity. vres_mdbc_slip_one computes
+ * density and velocity for every mode. */
 #ifndef VRES_KERNELS_MDBC_H
 #define VRES_KERNELS_MDBC_H
 
@@ -30,9 +45,11 @@
 /* The determinant below which the first-order correction gives way to Shepard's. */
 #define VRES_MDBC_DETERM_LIMIT 1e-3
 
-/* Solve the n x n system A s = b (n <= 4, row-major A, both overwritten) by Gaussian
- * elimination with partial pivoting; returns det A (s in b when det != 0). */
-VRES_HD static inline double vres_mdbc_solve(int n, double *A, double *b)
+/* Solve the n x n system A X = B for m right-hand sides (n <= 4, m <= 4; A row-major, B
+ * row-major n x m, both overwritten) by Gaussian elimination with partial pivoting; returns
+ * det A (the solutions in B's columns when det != 0). Column j of the solution depends only
+ * on column j of B, so adding right-hand sides changes no digit of the others. */
+VRES_HD static inline double vres_mdbc_solve_m(int n, int m, double *A, double *B)
 {
     double det = 1;
     for (int c = 0; c < n; c++) {
@@ -46,46 +63,63 @@ VRES_HD static inline double vres_mdbc_solve(int n, double *A, double *b)
                 A[c * n + k] = A[p * n + k];
                 A[p * n + k] = t;
             }
-            double t = b[c];
-            b[c] = b[p];
-            b[p] = t;
+            for (int j = 0; j < m; j++) {
+                double t = B[c * m + j];
+                B[c * m + j] = B[p * m + j];
+                B[p * m + j] = t;
+            }
             det = -det;
         }
         det *= A[c * n + c];
         for (int r = c + 1; r < n; r++) {
             double f = A[r * n + c] / A[c * n + c];
             for (int k = c; k < n; k++) A[r * n + k] -= f * A[c * n + k];
-            b[r] -= f * b[c];
+            for (int j = 0; j < m; j++) B[r * m + j] -= f * B[c * m + j];
         }
     }
-    for (int r = n - 1; r >= 0; r--) {
-        double s = b[r];
-        for (int k = r + 1; k < n; k++) s -= A[r * n + k] * b[k];
-        b[r] = s / A[r * n + r];
-    }
+    for (int r = n - 1; r >= 0; r--)
+        for (int j = 0; j < m; j++) {
+            double s = B[r * m + j];
+            for (int k = r + 1; k < n; k++) s -= A[r * n + k] * B[k * m + j];
+            B[r * m + j] = s / A[r * n + r];
+        }
     return det;
 }
 
-/* The mDBC density of wall particle a (kg/m^3) into rho[a]; fluid particles and walls without
- * a normal are left alone. Arrays in cell order as for vres_sph_interact; normal is the
- * store's [3n] wall normals, dim 2 (x-z plane) or 3. Reads only fluid densities and writes
- * only wall ones, so it may run over all particles at once. */
-VRES_HD static inline void vres_mdbc_one(size_t a, const vres_cells *g, const double *pos, float *rho,
-                                         const double *mass, const uint8_t *type, const float *normal,
-                                         vres_sph_consts C, int dim)
+/* Solve the n x n system A s = b (n <= 4, row-major A, both overwritten): vres_mdbc_solve_m
+ * with one right-hand side; returns det A (s in b when det != 0). */
+VRES_HD static inline double vres_mdbc_solve(int n, double *A, double *b)
 {
-    if (type[a] == 0) return;
-    const float *nv = &normal[3 * a];
-    if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) return;
+    return vres_mdbc_solve_m(n, 1, A, b);
+}
+
+/* How vres_mdbc_ghost estimated the fluid at a ghost node. */
+#define VRES_MDBC_EMPTY 0   /* no fluid within the kernel support: rho0 (and the motion velocity) */
+#define VRES_MDBC_SHEPARD 1 /* ill-conditioned moment matrix: Shepard sums */
+#define VRES_MDBC_FIRST 2   /* first-order corrected density (and velocity with vorder 1) */
+
+/* The fluid seen from the ghost node of wall particle a, whose normal nv (m, not zero) points
+ * to the wall face: the density the wall takes (kg/m^3, extrapolated from the ghost back to
+ * the wall particle) into *rho_w and, when vel is not NULL, the fluid velocity at the ghost
+ * node (m/s; Shepard, or first order with vorder 1 where the density is) into vg. Arrays as
+ * for vres_mdbc_one; reads fluid particles only. Returns a VRES_MDBC_* kind (EMPTY: *rho_w =
+ * rho0, vg untouched). */
+VRES_HD static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const double *pos, const float *vel,
+                                          const float *rho, const double *mass, const uint8_t *type,
+                                          const float *nv, vres_sph_consts C, int dim, int vorder, double *rho_w,
+                                          double vg[3])
+{
     double xg[3] = {pos[3 * a] + 2.0 * nv[0], pos[3 * a + 1] + 2.0 * nv[1], pos[3 * a + 2] + 2.0 * nv[2]};
     for (int k = 0; k < 3; k++) /* a ghost across a periodic boundary is seen from its image */
         if (g->periodic[k]) xg[k] += xg[k] < g->lo[k] ? g->period[k] : xg[k] >= g->hi[k] ? -g->period[k] : 0.0;
-    /* unknowns: rho_g then the gradient's components along the axes in use (x, z in 2D) */
-    const int ax[3] = {0, dim == 2 ? 2 : 1, 2}, n = dim + 1;
-    double A[16] = {0}, s[4] = {0};
+    /* unknowns: the ghost's value then the gradient's components along the axes in use (x, z
+       in 2D); right-hand sides (columns of s): density, then the three velocity components
+       when asked */
+    const int ax[3] = {0, dim == 2 ? 2 : 1, 2}, n = dim + 1, m = vel ? 4 : 1;
+    double A[16] = {0}, s[16] = {0};
     vres_cell_range nb[27];
-    int m = vres_cells_neighbours(g, xg, nb);
-    for (int c = 0; c < m; c++)
+    int nc = vres_cells_neighbours(g, xg, nb);
+    for (int c = 0; c < nc; c++)
         for (size_t b = nb[c].begin; b < nb[c].end; b++) {
             if (type[b] != 0) continue; /* fluid only */
             double dx[3] = {xg[0] - (pos[3 * b] + nb[c].shift[0]), xg[1] - (pos[3 * b + 1] + nb[c].shift[1]),
@@ -98,24 +132,47 @@ VRES_HD static inline void vres_mdbc_one(size_t a, const vres_cells *g, const do
             row[0] = W, col[0] = 1;
             for (int k = 1; k < n; k++) row[k] = F * dx[ax[k - 1]], col[k] = dx[ax[k - 1]];
             for (int i = 0; i < n; i++) {
-                s[i] += mb * row[i];
+                s[i * m] += mb * row[i];
+                for (int j = 1; j < m; j++) s[i * m + j] += vol * row[i] * vel[3 * b + j - 1];
                 for (int j = 0; j < n; j++) A[i * n + j] += vol * row[i] * col[j];
             }
         }
-    double a11 = A[0], shep = s[0];
+    double a11 = A[0];
     if (!(a11 > 0)) {
-        rho[a] = (float)C.rho0;
-        return;
+        *rho_w = C.rho0;
+        return VRES_MDBC_EMPTY;
     }
-    double det = vres_mdbc_solve(n, A, s);
-    if (fabs(det) >= VRES_MDBC_DETERM_LIMIT) {
-        /* s = (rho_g, -grad rho); x_w - x_g = -2 n */
+    double shep[4] = {s[0], 0, 0, 0}; /* the Shepard numerators: the first row of s */
+    for (int j = 1; j < m; j++) shep[j] = s[j];
+    double det = vres_mdbc_solve_m(n, m, A, s);
+    int first = fabs(det) >= VRES_MDBC_DETERM_LIMIT;
+    if (first) {
+        /* s[0] = rho_g, s[k m] = -d rho/d x_k; x_w - x_g = -2 n */
         double r = s[0];
-        for (int k = 1; k < n; k++) r += (-s[k]) * (-2.0 * nv[ax[k - 1]]);
-        rho[a] = (float)r;
+        for (int k = 1; k < n; k++) r += (-s[k * m]) * (-2.0 * nv[ax[k - 1]]);
+        *rho_w = r;
     } else {
-        rho[a] = (float)(shep / a11);
+        *rho_w = shep[0] / a11;
     }
+    for (int j = 1; j < m; j++) vg[j - 1] = first && vorder == 1 ? s[j] : shep[j] / a11;
+    return first ? VRES_MDBC_FIRST : VRES_MDBC_SHEPARD;
+}
+
+/* The mDBC density of wall particle a (kg/m^3) into rho[a]; fluid particles and walls without
+ * a normal are left alone (SlipMode 1: the velocity is not touched). Arrays in cell order as
+ * for vres_sph_interact; normal is the store's [3n] wall normals, dim 2 (x-z plane) or 3.
+ * Reads only fluid densities and writes only wall ones, so it may run over all particles at
+ * once. */
+VRES_HD static inline void vres_mdbc_one(size_t a, const vres_cells *g, const double *pos, float *rho,
+                                         const double *mass, const uint8_t *type, const float *normal,
+                                         vres_sph_consts C, int dim)
+{
+    if (type[a] == 0) return;
+    const float *nv = &normal[3 * a];
+    if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) return;
+    double r, vg[3];
+    vres_mdbc_ghost(a, g, pos, NULL, rho, mass, type, nv, C, dim, 0, &r, vg);
+    rho[a] = (float)r;
 }
 
 /* vres_mdbc_cpu / vres_mdbc_cuda (n, g, pos, rho, mass, type, normal, C, dim). */
@@ -123,5 +180,53 @@ VRES_PARTICLE_LOOP(vres_mdbc, vres_mdbc_one,
                    (const vres_cells *g, const double *pos, float *rho, const double *mass, const uint8_t *type,
                     const float *normal, vres_sph_consts C, int dim),
                    (g, pos, rho, mass, type, normal, C, dim))
+
+/* The mDBC density (kg/m^3) and, for SlipMode slip 2 (no-slip) or 3 (free slip), the velocity
+ * (m/s) of wall particle a that the interaction then uses, into rho[a] and vel[3a..3a+2]
+ * (see the top of this file). mvel [3n] is each wall's motion velocity (m/s: the body's
+ * v + w x (x - p) for a moving wall, zero for a fixed one; NULL: every wall is fixed); it is
+ * what vel held before mDBC overwrote it, so the solver keeps it apart. vorder picks the
+ * ghost velocity estimate (0 Shepard as DualSPHysics, 1 first-order corrected). slip 1 is
+ * vres_mdbc_one (vel and mvel unused). A wall without a normal (DBC) gets its motion
+ * velocity with slip 2 and 3. Reads only fluid densities and velocities and writes only
+ * wall ones, so it may run over all particles at once. */
+VRES_HD static inline void vres_mdbc_slip_one(size_t a, const vres_cells *g, const double *pos, float *vel,
+                                              float *rho, const double *mass, const uint8_t *type,
+                                              const float *normal, const float *mvel, vres_sph_consts C, int dim,
+                                              int slip, int vorder)
+{
+    if (type[a] == 0) return;
+    const float *nv = &normal[3 * a];
+    const double vm[3] = {mvel ? mvel[3 * a] : 0.0, mvel ? mvel[3 * a + 1] : 0.0, mvel ? mvel[3 * a + 2] : 0.0};
+    float *va = &vel[3 * a];
+    if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) {
+        if (slip >= 2) va[0] = (float)vm[0], va[1] = (float)vm[1], va[2] = (float)vm[2];
+        return;
+    }
+    double r, vg[3] = {0, 0, 0};
+    int kind = vres_mdbc_ghost(a, g, pos, slip >= 2 ? vel : NULL, rho, mass, type, nv, C, dim, vorder, &r, vg);
+    rho[a] = (float)r;
+    if (slip < 2) return;
+    double vw[3];
+    if (kind == VRES_MDBC_EMPTY) {
+        vw[0] = vm[0], vw[1] = vm[1], vw[2] = vm[2];
+    } else if (slip == 2) {
+        for (int k = 0; k < 3; k++) vw[k] = 2.0 * vm[k] - vg[k];
+    } else {
+        double len = sqrt((double)nv[0] * nv[0] + (double)nv[1] * nv[1] + (double)nv[2] * nv[2]);
+        double u[3] = {nv[0] / len, nv[1] / len, nv[2] / len};
+        double dn = 2.0 * ((vm[0] - vg[0]) * u[0] + (vm[1] - vg[1]) * u[1] + (vm[2] - vg[2]) * u[2]);
+        for (int k = 0; k < 3; k++) vw[k] = vg[k] + dn * u[k];
+    }
+    va[0] = (float)vw[0], va[1] = (float)vw[1], va[2] = (float)vw[2];
+}
+
+/* vres_mdbc_slip_cpu / vres_mdbc_slip_cuda (n, g, pos, vel, rho, mass, type, normal, mvel, C,
+ * dim, slip, vorder). */
+VRES_PARTICLE_LOOP(vres_mdbc_slip, vres_mdbc_slip_one,
+                   (const vres_cells *g, const double *pos, float *vel, float *rho, const double *mass,
+                    const uint8_t *type, const float *normal, const float *mvel, vres_sph_consts C, int dim,
+                    int slip, int vorder),
+                   (g, pos, vel, rho, mass, type, normal, mvel, C, dim, slip, vorder))
 
 #endif
