@@ -182,9 +182,12 @@ static int read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
     c->mdbc = v == 2;
     c->slip = 1;
     if (v != 1 && v != 2) not_impl(&bad, "Boundary", v, "unknown", "1 (DBC), 2 (mDBC)");
-    if (c->mdbc && (v = vres_params_get(P, "SlipMode", 1)) != 1)
-        not_impl(&bad, "SlipMode", v, v == 2 ? "mDBC no-slip" : v == 3 ? "mDBC free slip" : "unknown",
-                 "1 (mDBC with the wall's own velocity)");
+    if (c->mdbc) {
+        v = vres_params_get(P, "SlipMode", 1);
+        c->slip = (int)v;
+        if (v != 1 && v != 2 && v != 3)
+            vres_error("SlipMode=%g: must be 1 (the wall's own velocity), 2 (no-slip) or 3 (free slip)", v), bad = 1;
+    }
     if (c->mdbc) {
         for (size_t i = 0; i < d->n; i++)
             if (d->type[i] != VRES_FLUID && d->normal &&
@@ -271,8 +274,8 @@ static char *modules(const run_cfg *c, const char *gpu)
     if (c->ddt) snprintf(ddt, sizeof ddt, "%s(delta=%g)", ddt_name[c->ddt], c->ddt_delta);
     char walls[96] = "";
     if (c->nwall && c->mdbc)
-        snprintf(walls, sizeof walls, " mdbc-walls(slip=vel0, %zu with normals, viscobound=%g)", c->nnormal,
-                 c->visco_bound);
+        snprintf(walls, sizeof walls, " mdbc-walls(slip=%s, %zu with normals, viscobound=%g)",
+                 c->slip == 2 ? "noslip" : c->slip == 3 ? "freeslip" : "vel0", c->nnormal, c->visco_bound);
     else if (c->nwall) snprintf(walls, sizeof walls, " dbc-walls(viscobound=%g)", c->visco_bound);
     char visc[64];
     if (c->visco_kind == VRES_VISC_LAMINAR) snprintf(visc, sizeof visc, "laminar-viscosity(nu=%g m^2/s)", c->visco);
@@ -697,7 +700,10 @@ static int time_loop(vres_store *s, vres_backend *b, const run_cfg *c, run_resum
         }
         double nex = r->nexcluded;
         if ((rc = after_step(s, b, c, r, f, t + dt, step + 1, t, step)) != VRES_RUN_OK) break;
-        if (r->nexcluded != nex) verlet_count = c->verlet_steps - 1; /* the previous step is gone: Euler next */
+        if (r->nexcluded != nex) {
+            if (c->verlet) verlet_count = c->verlet_steps - 1; /* the previous step is gone: Euler next */
+            b->move_walls(b, mv); /* the walls' motion velocities, reset by the upload */
+        }
         t += dt;
         step++;
         progress(c, &clk, s->time, t, step, dt, 0);

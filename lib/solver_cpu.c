@@ -42,6 +42,8 @@ typedef struct cpu_ctx {
     double *ar;           /* [n] density rates (kg/m^3/s) */
     double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
     double *xref;         /* [3n] moving walls' reference positions (m); NULL without them */
+    float *mvel;          /* [3n] walls' own (motion) velocity, zero for fixed walls (m/s): mDBC no-slip and free
+                             slip set the wall particles' vel to what the fluid must see; NULL for other scenes */
     float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
     float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
     double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
@@ -115,6 +117,7 @@ static int cpu_sort(vres_backend *b, int carry)
     vres_cells_build(&x->cells, d->pos, d->n);
     if (vres_cells_reorder(&x->cells, d) != 0) return -1;
     if (x->xref) vres_cells_gather(&x->cells, x->xref, 3 * sizeof(double));
+    if (x->mvel) vres_cells_gather(&x->cells, x->mvel, 3 * sizeof(float));
     if (x->velm1) vres_cells_gather(&x->cells, x->velm1, 3 * sizeof(float));
     if (x->rhom1) vres_cells_gather(&x->cells, x->rhom1, sizeof(float));
     if (!carry) return 0;
@@ -144,13 +147,17 @@ static void cpu_restore_start(vres_backend *b)
     memcpy(d->rho, x->rho0, d->n * sizeof *d->rho);
 }
 
-/* mDBC wall densities for the current positions. */
+/* mDBC wall densities for the current positions, and with SlipMode 2 or 3 the wall velocities
+ * (the ghost node's velocity by Shepard's sum, as DualSPHysics, mirrored about the wall's own). */
 static void cpu_mdbc(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
-    if (x->c.mdbc && x->c.nnormal)
-        vres_mdbc_cpu(d->n, &x->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, x->C, x->c.dim);
+    if (!x->c.mdbc || !x->c.nnormal) return;
+    if (x->mvel)
+        vres_mdbc_slip_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->mass_p, d->type, d->normal, x->mvel, x->C,
+                           x->c.dim, x->c.slip, 0);
+    else vres_mdbc_cpu(d->n, &x->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, x->C, x->c.dim);
 }
 
 /* mDBC, EOS, then the interaction at the current (cell-sorted) state. */
@@ -273,6 +280,7 @@ static void cpu_move_walls(vres_backend *b, const vres_motion_state *mv)
         d->vel[3 * i] = (float)(m->v[0] + m->w[1] * r[2] - m->w[2] * r[1]);
         d->vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
         d->vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
+        if (x->mvel) memcpy(&x->mvel[3 * i], &d->vel[3 * i], 3 * sizeof(float));
     }
 }
 
@@ -325,6 +333,7 @@ static int cpu_upload(vres_backend *b, const vres_domain *d, const double *xref)
     if (x->xref && xref && xref != x->xref) memcpy(x->xref, xref, 3 * d->n * sizeof *xref);
     if (x->velm1) memcpy(x->velm1, d->vel, 3 * d->n * sizeof *x->velm1);
     if (x->rhom1) memcpy(x->rhom1, d->rho, d->n * sizeof *x->rhom1);
+    if (x->mvel) memset(x->mvel, 0, 3 * d->n * sizeof *x->mvel);
     return 0;
 }
 
@@ -377,6 +386,7 @@ static void cpu_close(vres_backend *b)
     free(x->ar);
     free(x->visc);
     free(x->xref);
+    free(x->mvel);
     free(x->shiftv);
     free(x->x2d);
     free(x->v2d);
@@ -445,6 +455,7 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
         x->xref = vres_xmalloc(3 * n * sizeof *x->xref + 1);
         memcpy(x->xref, d->pos, 3 * n * sizeof *x->xref);
     }
+    if (c->mdbc && c->slip >= 2) x->mvel = vres_xcalloc(3 * n + 1, sizeof *x->mvel);
     x->interact = pick_interaction(c);
     x->interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
     memset(b, 0, sizeof *b);

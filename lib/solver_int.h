@@ -100,7 +100,8 @@ typedef struct vres_backend {
     /* Take the domain d back after the host changed it (particles removed: n may be smaller;
      * the moving walls' reference positions xref[3 d->n] in d's order, NULL without moving
      * walls). Verlet's previous-step velocities and densities restart from d's (the time loop
-     * makes the next step an Euler step, which does not read them). 0 or -1. */
+     * makes the next step an Euler step, which does not read them); the walls' motion velocities
+     * restart from zero (the time loop places the moving walls again). 0 or -1. */
     int (*upload)(struct vres_backend *b, const vres_domain *d, const double *xref);
     /* The moving walls' reference positions (m) in the current slot order into xref[3n]
      * (for the host's compaction). Nothing without moving walls. */

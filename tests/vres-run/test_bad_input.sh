@@ -47,12 +47,6 @@ for kv in "ViscoTreatment=2:ViscoTreatment=2 \(laminar\+SPS\) is not implemented
     "$GEN" -q --set "$set" "$TANK" -o "$T/p.h5" || notok "gencase --set $set"
     refused 1 "${kv#*:}" "refuses $set" "$T/p.h5"
 done
-# mDBC slip modes other than 1
-for m in 2 3; do
-    "$GEN" -q --set Boundary=2 --set SlipMode=$m "$TANK" -o "$T/p.h5" || notok "gencase --set SlipMode=$m"
-    refused 1 "SlipMode=$m \(mDBC .*\) is not implemented yet" "refuses mDBC SlipMode=$m" "$T/p.h5"
-done
-
 # CFL outside (0, 1]: vres-gencase refuses it, so the store is edited by the solver unit test
 SETTER=$ROOT/$VRES_BUILD/tests/test_solver
 if VRES_TEST_SET_IN=$T/tank.h5 VRES_TEST_SET_OUT=$T/cfl.h5 VRES_TEST_SET=cflnumber=2 "$SETTER" >/dev/null 2>&1; then
