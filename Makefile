@@ -83,11 +83,11 @@ $(BINDIR)/vres-%: tools/vres-%.c $(LIBVRES) $(wildcard lib/*.h) | $(BINDIR)
 	$(CC) $(CFLAGS) $< -o $@ $(LIBVRES) $(LDLIBS)
 
 $(B)/asan/%.o: lib/%.c $(wildcard lib/*.h kernels/*.h) | $(B)/asan/bin
-	$(CC) $(filter-out -DVRES_HAVE_CUDA,$(CFLAGS)) -O1 $(ASAN_FLAGS) -c $< -o $@
+	$(CC) $(filter-out -DVRES_HAVE_CUDA -DVRES_HAVE_CUDA_SOLVER,$(CFLAGS)) -O1 $(ASAN_FLAGS) -c $< -o $@
 $(B)/asan/%.o: lib/%.cc $(wildcard lib/*.h) | $(B)/asan/bin
 	$(CXX) $(CXXFLAGS) -O1 $(ASAN_FLAGS) -c $< -o $@
 $(B)/asan/bin/vres-%: tools/vres-%.c $(ASAN_OBJ) | $(B)/asan/bin
-	$(CC) $(filter-out -DVRES_HAVE_CUDA,$(CFLAGS)) -O1 $(ASAN_FLAGS) $< -o $@ $(ASAN_OBJ) \
+	$(CC) $(filter-out -DVRES_HAVE_CUDA -DVRES_HAVE_CUDA_SOLVER,$(CFLAGS)) -O1 $(ASAN_FLAGS) $< -o $@ $(ASAN_OBJ) \
 	  $(filter-out -lcudart,$(LDLIBS))
 
 $(B)/tests/test_%: tests/lib/test_%.c $(LIBVRES) | $(B)/tests

@@ -1,0 +1,813 @@
+/* solver_cuda.cu - the CUDA backend of vres-run (solver_int.h's vres_backend): the particle state
+ * lives in device arrays, is sorted by cell with CUB's radix sort, and is stepped by the very
+ * per-particle functions of kernels/ (sph.h, mdbc.h, eos.h) that the CPU backend runs, through
+ * their VRES_PARTICLE_LOOP / VRES_CELL_LOOP _cuda launchers. What is CUDA-only here is kept
+ * mechanical: allocation and copies, the cell sort, gathers, reductions, and a few per-particle
+ * helpers that mirror solver_cpu.c line for line (written as VRES_PARTICLE_LOOPs too).
+ *
+ * Errors: every CUDA call is checked. The first failure prints "CUDA: what: message" and marks
+ * the backend failed; from then on every operation returns at once with its failure value
+ * (sort, download and upload -1), so the time loop stops at its next sort or output without a
+ * second message. Everything runs on the default stream, so operations are ordered. */
+#include <cuda_runtime.h>
+#include <limits.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cub/cub.cuh>
+
+#include "../kernels/eos.h"
+#include "../kernels/mdbc.h"
+#include "../kernels/sph.h"
+#include "cells.h"
+#include "solver_int.h"
+extern "C" { /* C headers without their own extern "C" guard */
+#include "device.h"
+#include "log.h"
+}
+
+/* One 3D interaction loop variant (kernels/sph.h), chosen once per run; g is a device pointer. */
+typedef void (*interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel, const float *rho,
+                            const float *press, const double *mass, const uint8_t *type, vres_sph_consts C,
+                            double *ace, double *ar, double *visc);
+
+/* One 3D interaction loop variant with the shifting sums (kernels/sph.h). */
+typedef void (*interact_shift_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
+                                  const float *rho, const float *press, const double *mass, const uint8_t *type,
+                                  vres_sph_consts C, double *ace, double *ar, double *visc, double *shiftv);
+
+/* One 2D interaction loop variant (kernels/sph.h: vres_sph2d_*), over n = ncells + 1 cells;
+ * g, P and C are device pointers. */
+typedef void (*interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
+                              double *ace, double *ar, double *visc, double *shiftv);
+
+/* What move_walls needs of a body to find a moving wall particle's one (solver_cpu.c's body_of). */
+typedef struct wall_body {
+    int mkbound;          /* the body's mkbound */
+    int moving;           /* 1 for a body with a prescribed motion (VRES_MOVING) */
+} wall_body;
+
+/* Gather scratch classes: element sizes (bytes) of the per-particle arrays that follow the sort. */
+static const size_t scratch_size[5] = {1, 4, 8, 12, 24};
+
+/* The CUDA backend's state. Pointers named d... or holding particle data are device memory. */
+typedef struct cuda_ctx {
+    run_cfg c;            /* the run configuration */
+    vres_sph_consts C;    /* interaction constants (host copy, passed by value to the 3D loops) */
+    double dp;            /* particle spacing (m): the shifting displacement is kept within 0.1 dp */
+    int failed;           /* 1 after a CUDA failure (already printed): every operation then gives up */
+    char name[300];       /* "cuda(DEVICE NAME)" for the module list */
+    size_t cap;           /* particles the device arrays have room for (the count at open) */
+    size_t nbodies;       /* the store's bodies (entries of dmv and dbody) */
+
+    double *pos;          /* [3n] positions (m) */
+    float *vel;           /* [3n] velocities (m/s) */
+    float *rho;           /* [n] densities (kg/m^3) */
+    float *press;         /* [n] pressures (Pa) */
+    double *mass;         /* [n] masses (kg) */
+    uint8_t *type;        /* [n] particle types (store.h) */
+    int32_t *mk;          /* [n] mk of each particle (moving walls find their body by it) */
+    uint64_t *id;         /* [n] particle ids (only carried, for the download's order) */
+    float *normal;        /* [3n] wall normals (m); NULL when the domain has none */
+    double *pos0;         /* [3n] positions at the step's start (m) */
+    float *vel0;          /* [3n] velocities at the step's start (m/s) */
+    float *rho0;          /* [n] densities at the step's start (kg/m^3) */
+    double *ace;          /* [3n] accelerations (m/s^2) */
+    double *ar;           /* [n] density rates (kg/m^3/s) */
+    double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
+    double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
+    float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
+    float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
+    double *xref;         /* [3n] moving walls' reference positions (m); NULL without moving walls */
+    float *mvel;          /* [3n] walls' own (motion) velocity, zero for fixed walls (m/s): mDBC no-slip and free
+                             slip overwrite the walls' vel with what the fluid must see; NULL for other scenes */
+    double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
+    float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
+    double *inv_rho;      /* [n] 2D: 1/density (m^3/kg) */
+
+    vres_cells hc;        /* host mirror of the cells: geometry from vres_cells_init, device begin/perm */
+    vres_cells *dcells;   /* device copy of hc, which the kernels read */
+    size_t sorted_n;      /* particles of the last sort, (size_t)-1 when an upload made the cells stale */
+    int key_bits;         /* bits of a cell key (keys are 0..ncells): the radix sort's end bit */
+    unsigned *key;        /* [n] cell of each particle (ncells when outside the box) */
+    unsigned *key_sorted; /* [n] the keys in sorted order */
+    size_t *slot;         /* [n] 0, 1, ... n-1: the values the sort permutes */
+    void *scratch[5];     /* [n * scratch_size[k]] gather targets, swapped with the arrays gathered */
+    void *temp;           /* CUB's temporary storage */
+    size_t temp_bytes;    /* its size (bytes) */
+
+    vres_sph_consts *dC;  /* device copy of C (the 2D loops take it by pointer) */
+    vres_sph_2d *dP;      /* device copy of the 2D loops' array set, refreshed each force evaluation */
+    double *dred;         /* [2] reductions of forces: largest fluid |a|^2 (m^2/s^4) and viscous rate (1/s) */
+    unsigned long long *dres; /* [2] check: first fatal slot, particles out of the box; count_pairs: the sum */
+    vres_motion_state *dmv;   /* [nbodies] the bodies' transforms for move_walls; NULL without moving walls */
+    wall_body *dbody;     /* [nbodies] which bodies move, by mkbound; NULL without moving walls */
+
+    interact_fn interact;             /* 3D variant without shifting sums */
+    interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
+} cuda_ctx;
+
+/* Check a CUDA result: 1 on success; otherwise print "CUDA: what: message" (only the first
+ * failure of a run: later calls fail from it), mark the backend failed and return 0. */
+static int ok(cuda_ctx *x, cudaError_t e, const char *what)
+{
+    if (e == cudaSuccess) return 1;
+    if (!x->failed) vres_error("CUDA: %s: %s", what, cudaGetErrorString(e));
+    x->failed = 1;
+    return 0;
+}
+
+/* Check the launch of the kernel(s) just queued. */
+static int launched(cuda_ctx *x, const char *what)
+{
+    return ok(x, cudaGetLastError(), what);
+}
+
+/* cudaMalloc of bytes (at least 1) into *p, named what in a failure. 1 or 0. */
+template <typename T> static int alloc(cuda_ctx *x, T **p, size_t bytes, const char *what)
+{
+    void *v = NULL;
+    if (!ok(x, cudaMalloc(&v, bytes ? bytes : 1), what)) return 0;
+    *p = (T *)v;
+    return 1;
+}
+
+/* Allocate *p for n elements of w values of type T and fill it from the host array src. 1 or 0. */
+template <typename T> static int alloc_copy(cuda_ctx *x, T **p, const T *src, size_t n, size_t w, const char *what)
+{
+    return alloc(x, p, n * w * sizeof(T), what) &&
+           ok(x, cudaMemcpy(*p, src, n * w * sizeof(T), cudaMemcpyHostToDevice), what);
+}
+
+/* Make CUB's temporary storage at least bytes long. 1 or 0. */
+static int grow_temp(cuda_ctx *x, size_t bytes)
+{
+    if (bytes <= x->temp_bytes) return 1;
+    if (!ok(x, cudaFree(x->temp), "free temporary storage")) return 0;
+    x->temp = NULL;
+    x->temp_bytes = 0;
+    if (!alloc(x, &x->temp, bytes, "allocate temporary storage")) return 0;
+    x->temp_bytes = bytes;
+    return 1;
+}
+
+/* ---- per-particle helpers (each mirrors the CPU backend's loop of the same purpose) ---- */
+
+/* The cell key of particle i (as vres_cells_build: ncells when outside the box) and its slot. */
+VRES_HD static inline void keys_one(size_t i, const vres_cells *g, const double *pos, unsigned *key, size_t *slot)
+{
+    int c[3];
+    key[i] = vres_cells_locate(g, pos + 3 * i, c)
+                 ? (unsigned)(((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0])
+                 : (unsigned)g->ncells;
+    slot[i] = i;
+}
+VRES_PARTICLE_LOOP(keys, keys_one, (const vres_cells *g, const double *pos, unsigned *key, size_t *slot),
+                   (g, pos, key, slot))
+
+/* begin[c] = the first sorted slot whose key is >= c (c = 0..ncells+1), so cell c holds the
+ * slots [begin[c], begin[c+1]) and the particles outside the box follow begin[ncells]. */
+VRES_HD static inline void begin_one(size_t c, const unsigned *sorted, size_t n, size_t *begin)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if ((size_t)sorted[mid] < c) lo = mid + 1;
+        else hi = mid;
+    }
+    begin[c] = lo;
+}
+VRES_PARTICLE_LOOP(cell_begin, begin_one, (const unsigned *sorted, size_t np, size_t *begin), (sorted, np, begin))
+
+/* dst[k] = src[perm[k]] for elements of w words W (moved as words: bit for bit). */
+template <typename W>
+__global__ static void gather_kernel(size_t n, size_t w, const size_t *perm, const W *src, W *dst)
+{
+    size_t k = (size_t)blockIdx.x * blockDim.x + threadIdx.x;
+    if (k < n)
+        for (size_t j = 0; j < w; j++) dst[k * w + j] = src[perm[k] * w + j];
+}
+
+/* The 2D interaction's split arrays of particle i (as the CPU backend's forces). */
+VRES_HD static inline void split2d_one(size_t i, size_t n, const double *pos, const float *vel, const float *rho,
+                                       double *x2d, float *v2d, double *inv_rho)
+{
+    x2d[i] = pos[3 * i], x2d[n + i] = pos[3 * i + 2];
+    v2d[i] = vel[3 * i], v2d[n + i] = vel[3 * i + 2];
+    inv_rho[i] = 1.0 / rho[i];
+}
+VRES_PARTICLE_LOOP(split2d, split2d_one,
+                   (size_t np, const double *pos, const float *vel, const float *rho, double *x2d, float *v2d,
+                    double *inv_rho),
+                   (np, pos, vel, rho, x2d, v2d, inv_rho))
+
+/* |a|^2 of a fluid particle, 0 for the others (the CPU's reduction skips them). */
+VRES_HD static inline void accel2_one(size_t i, const uint8_t *type, const double *ace, double *a2)
+{
+    const double *a = &ace[3 * i];
+    a2[i] = type[i] == VRES_FLUID ? a[0] * a[0] + a[1] * a[1] + a[2] * a[2] : 0.0;
+}
+VRES_PARTICLE_LOOP(accel2, accel2_one, (const uint8_t *type, const double *ace, double *a2), (type, ace, a2))
+
+/* Move particle i by its shifting displacement (zero for walls: vres_shift_one cleared it). */
+VRES_HD static inline void shift_apply_one(size_t i, const double *shiftv, double *pos)
+{
+    for (int k = 0; k < 3; k++) pos[3 * i + k] += shiftv[4 * i + k];
+}
+VRES_PARTICLE_LOOP(shift_apply, shift_apply_one, (const double *shiftv, double *pos), (shiftv, pos))
+
+/* A moving wall particle to its body's transform, with the rigid velocity field, kept in mvel
+ * too when not NULL (as the CPU's move_walls; the body is found by mkbound among the nb bodies
+ * as its body_of does). */
+VRES_HD static inline void move_wall_one(size_t i, const uint8_t *type, const int32_t *mk, const double *xr,
+                                         double *pos, float *vel, float *mvel, const vres_motion_state *mv,
+                                         const wall_body *body, size_t nb)
+{
+    if (type[i] != VRES_MOVING) return;
+    size_t k = 0;
+    while (k < nb && !(body[k].moving && body[k].mkbound == mk[i])) k++;
+    if (k == nb) return; /* the solver refused such a particle at its start */
+    const vres_motion_state *m = &mv[k];
+    double *p = &pos[3 * i], r[3];
+    for (int a = 0; a < 3; a++)
+        p[a] = m->R[3 * a] * xr[3 * i] + m->R[3 * a + 1] * xr[3 * i + 1] + m->R[3 * a + 2] * xr[3 * i + 2] + m->d[a];
+    for (int a = 0; a < 3; a++) r[a] = p[a] - m->p[a];
+    vel[3 * i] = (float)(m->v[0] + m->w[1] * r[2] - m->w[2] * r[1]);
+    vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
+    vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
+    if (mvel) mvel[3 * i] = vel[3 * i], mvel[3 * i + 1] = vel[3 * i + 1], mvel[3 * i + 2] = vel[3 * i + 2];
+}
+VRES_PARTICLE_LOOP(move_wall, move_wall_one,
+                   (const uint8_t *type, const int32_t *mk, const double *xr, double *pos, float *vel,
+                    float *mvel, const vres_motion_state *mv, const wall_body *body, size_t nb),
+                   (type, mk, xr, pos, vel, mvel, mv, body, nb))
+
+/* Particle i's position mapped into [lo, hi) along the periodic axes (vres_cells_wrap's rule). */
+VRES_HD static inline void wrap_one(size_t i, const vres_cells *g, double *pos)
+{
+    for (int a = 0; a < 3; a++) {
+        if (!g->periodic[a]) continue;
+        double lo = g->lo[a], hi = g->hi[a], L = g->period[a], u = pos[3 * i + a];
+        if (u >= lo && u < hi) continue; /* NaN falls through and stays NaN */
+        u = lo + fmod(u - lo, L);
+        if (u < lo) u += L;
+        if (u >= hi) u = lo;
+        pos[3 * i + a] = u;
+    }
+}
+VRES_PARTICLE_LOOP(wrap, wrap_one, (const vres_cells *g, double *pos), (g, pos))
+
+/* The CPU's check rules for particle i: a non-finite position, velocity or density, or a fluid
+ * density outside rmin..rmax (when check_rho), makes it fatal (res[0] = the smallest such slot);
+ * a finite one outside the cells' box counts in res[1]. Integer atomics: order-free results. */
+__device__ static inline void check_one(size_t i, const vres_cells *g, const double *pos, const float *vel,
+                                        const float *rho, const uint8_t *type, int check_rho, double rmin,
+                                        double rmax, unsigned long long *res)
+{
+    const double *p = &pos[3 * i];
+    int good = isfinite(rho[i]) && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+    for (int k = 0; k < 3; k++) good = good && isfinite(vel[3 * i + k]);
+    if (good && check_rho && type[i] == VRES_FLUID) good = rho[i] >= rmin && rho[i] <= rmax;
+    int ijk[3];
+    if (good && !vres_cells_locate(g, p, ijk)) atomicAdd(&res[1], 1ULL);
+    if (!good) atomicMin(&res[0], (unsigned long long)i);
+}
+VRES_PARTICLE_LOOP(check, check_one,
+                   (const vres_cells *g, const double *pos, const float *vel, const float *rho, const uint8_t *type,
+                    int check_rho, double rmin, double rmax, unsigned long long *res),
+                   (g, pos, vel, rho, type, check_rho, rmin, rmax, res))
+
+/* The neighbours b != a of particle a within 2h (r2max = 4h^2) into cnt[a] (the CPU's count_pairs). */
+VRES_HD static inline void pairs_one(size_t a, const vres_cells *g, const double *pos, double r2max,
+                                     unsigned long long *cnt)
+{
+    vres_cell_range nb[27];
+    const double *pa = &pos[3 * a];
+    unsigned long long total = 0;
+    int m = vres_cells_neighbours(g, pa, nb);
+    for (int k = 0; k < m; k++)
+        for (size_t j = nb[k].begin; j < nb[k].end; j++) {
+            if (j == a && !nb[k].shift[0] && !nb[k].shift[1] && !nb[k].shift[2]) continue;
+            double r2 = 0;
+            for (int q = 0; q < 3; q++) {
+                if (q == 1 && g->dim == 2) continue;
+                double dq = pa[q] - (pos[3 * j + q] + nb[k].shift[q]);
+                r2 += dq * dq;
+            }
+            total += r2 < r2max;
+        }
+    cnt[a] = total;
+}
+VRES_PARTICLE_LOOP(pairs, pairs_one, (const vres_cells *g, const double *pos, double r2max, unsigned long long *cnt),
+                   (g, pos, r2max, cnt))
+
+/* max(a, b) ignoring NaN (fmax): with the initial value 0 a reduction gives what the CPU's
+ * "if (v > max) max = v" from 0 gives, whatever order the terms are combined in. */
+struct max_op {
+    __host__ __device__ double operator()(double a, double b) const { return fmax(a, b); }
+};
+
+/* ---- variant tables (the same as solver_cpu.c's, with the _cuda launchers) ---- */
+
+/* The 3D interaction variant for this scene (viscosity kind x walls x DensityDT). */
+static interact_fn pick_interaction(const run_cfg *c)
+{
+    static const interact_fn table[2][2][3] = {
+        {{vres_sph_plain_cuda, vres_sph_molteni_cuda, vres_sph_fourtakas_cuda},
+         {vres_sph_dbc_cuda, vres_sph_dbc_molteni_cuda, vres_sph_dbc_fourtakas_cuda}},
+        {{vres_sph_laminar_plain_cuda, vres_sph_laminar_molteni_cuda, vres_sph_laminar_fourtakas_cuda},
+         {vres_sph_laminar_dbc_cuda, vres_sph_laminar_dbc_molteni_cuda, vres_sph_laminar_dbc_fourtakas_cuda}}};
+    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
+/* The shifting variant of pick_interaction's choice. */
+static interact_shift_fn pick_interaction_shift(const run_cfg *c)
+{
+    static const interact_shift_fn table[2][2][3] = {
+        {{vres_sph_shift_plain_cuda, vres_sph_shift_molteni_cuda, vres_sph_shift_fourtakas_cuda},
+         {vres_sph_shift_dbc_cuda, vres_sph_shift_dbc_molteni_cuda, vres_sph_shift_dbc_fourtakas_cuda}},
+        {{vres_sph_shift_laminar_plain_cuda, vres_sph_shift_laminar_molteni_cuda,
+          vres_sph_shift_laminar_fourtakas_cuda},
+         {vres_sph_shift_laminar_dbc_cuda, vres_sph_shift_laminar_dbc_molteni_cuda,
+          vres_sph_shift_laminar_dbc_fourtakas_cuda}}};
+    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
+/* The 2D variant for this scene, with the shifting sums when shift is 1. */
+static interact2d_fn pick_interaction2d(const run_cfg *c, int shift)
+{
+    static const interact2d_fn table[2][2][2][3] = {
+        {{{vres_sph2d_plain_cuda, vres_sph2d_molteni_cuda, vres_sph2d_fourtakas_cuda},
+          {vres_sph2d_dbc_cuda, vres_sph2d_dbc_molteni_cuda, vres_sph2d_dbc_fourtakas_cuda}},
+         {{vres_sph2d_laminar_plain_cuda, vres_sph2d_laminar_molteni_cuda, vres_sph2d_laminar_fourtakas_cuda},
+          {vres_sph2d_laminar_dbc_cuda, vres_sph2d_laminar_dbc_molteni_cuda, vres_sph2d_laminar_dbc_fourtakas_cuda}}},
+        {{{vres_sph2d_shift_plain_cuda, vres_sph2d_shift_molteni_cuda, vres_sph2d_shift_fourtakas_cuda},
+          {vres_sph2d_shift_dbc_cuda, vres_sph2d_shift_dbc_molteni_cuda, vres_sph2d_shift_dbc_fourtakas_cuda}},
+         {{vres_sph2d_shift_laminar_plain_cuda, vres_sph2d_shift_laminar_molteni_cuda,
+           vres_sph2d_shift_laminar_fourtakas_cuda},
+          {vres_sph2d_shift_laminar_dbc_cuda, vres_sph2d_shift_laminar_dbc_molteni_cuda,
+           vres_sph2d_shift_laminar_dbc_fourtakas_cuda}}}};
+    return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
+}
+
+/* ---- the operations ---- */
+
+/* The context of backend b. */
+static cuda_ctx *ctx_of(vres_backend *b)
+{
+    return (cuda_ctx *)b->ctx;
+}
+
+/* Permute the n-particle array *arr (elements of w values T) by the last sort: gather into the
+ * scratch buffer of its element size, then swap the two pointers. Nothing for a NULL array. */
+template <typename T> static void gather(cuda_ctx *x, size_t n, T **arr, size_t w)
+{
+    if (!*arr || x->failed || !n) return;
+    size_t bytes = w * sizeof(T), k = 0;
+    while (scratch_size[k] != bytes) k++; /* every array's element size has its class */
+    void *dst = x->scratch[k];
+    unsigned blocks = (unsigned)((n + 255) / 256);
+    if (bytes % 8 == 0)
+        gather_kernel<uint64_t><<<blocks, 256>>>(n, bytes / 8, x->hc.perm, (const uint64_t *)*arr, (uint64_t *)dst);
+    else if (bytes % 4 == 0)
+        gather_kernel<uint32_t><<<blocks, 256>>>(n, bytes / 4, x->hc.perm, (const uint32_t *)*arr, (uint32_t *)dst);
+    else
+        gather_kernel<uint8_t><<<blocks, 256>>>(n, bytes, x->hc.perm, (const uint8_t *)*arr, (uint8_t *)dst);
+    if (!launched(x, "gather")) return;
+    x->scratch[k] = (void *)*arr;
+    *arr = (T *)dst;
+}
+
+/* Sort by cell: keys, CUB's stable radix sort of (key, slot), the cells' begin offsets, then
+ * every per-particle array gathered (the step start too with carry). */
+static int cu_sort(vres_backend *b, int carry)
+{
+    cuda_ctx *x = ctx_of(b);
+    size_t n = b->n, bytes = 0;
+    if (x->failed) return -1;
+    keys_cuda(n, x->dcells, x->pos, x->key, x->slot);
+    if (!launched(x, "cell keys") ||
+        !ok(x, cub::DeviceRadixSort::SortPairs(NULL, bytes, x->key, x->key_sorted, x->slot, x->hc.perm, (int)n, 0,
+                                               x->key_bits), "sort by cell (size)") ||
+        !grow_temp(x, bytes) ||
+        !ok(x, cub::DeviceRadixSort::SortPairs(x->temp, bytes, x->key, x->key_sorted, x->slot, x->hc.perm, (int)n, 0,
+                                               x->key_bits), "sort by cell"))
+        return -1;
+    cell_begin_cuda(x->hc.ncells + 2, x->key_sorted, n, x->hc.begin);
+    x->hc.n = n;
+    if (!launched(x, "cell offsets") || !ok(x, cudaMemcpy(x->dcells, &x->hc, sizeof x->hc, cudaMemcpyHostToDevice),
+                                            "copy the cells"))
+        return -1;
+    gather(x, n, &x->pos, 3);
+    gather(x, n, &x->vel, 3);
+    gather(x, n, &x->rho, 1);
+    gather(x, n, &x->press, 1);
+    gather(x, n, &x->mass, 1);
+    gather(x, n, &x->type, 1);
+    gather(x, n, &x->mk, 1);
+    gather(x, n, &x->id, 1);
+    gather(x, n, &x->normal, 3);
+    gather(x, n, &x->xref, 3);
+    gather(x, n, &x->mvel, 3);
+    gather(x, n, &x->velm1, 3);
+    gather(x, n, &x->rhom1, 1);
+    if (carry) {
+        gather(x, n, &x->pos0, 3);
+        gather(x, n, &x->vel0, 3);
+        gather(x, n, &x->rho0, 1);
+    }
+    x->sorted_n = n;
+    return x->failed ? -1 : 0;
+}
+
+/* Keep the current state as the step's start. */
+static void cu_save_start(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    size_t n = b->n;
+    if (x->failed) return;
+    const char *what = "save the step start";
+    ok(x, cudaMemcpy(x->pos0, x->pos, 3 * n * sizeof *x->pos, cudaMemcpyDeviceToDevice), what) &&
+        ok(x, cudaMemcpy(x->vel0, x->vel, 3 * n * sizeof *x->vel, cudaMemcpyDeviceToDevice), what) &&
+        ok(x, cudaMemcpy(x->rho0, x->rho, n * sizeof *x->rho, cudaMemcpyDeviceToDevice), what);
+}
+
+/* Put the step's start back. */
+static void cu_restore_start(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    size_t n = b->n;
+    if (x->failed) return;
+    const char *what = "restore the step start";
+    ok(x, cudaMemcpy(x->pos, x->pos0, 3 * n * sizeof *x->pos, cudaMemcpyDeviceToDevice), what) &&
+        ok(x, cudaMemcpy(x->vel, x->vel0, 3 * n * sizeof *x->vel, cudaMemcpyDeviceToDevice), what) &&
+        ok(x, cudaMemcpy(x->rho, x->rho0, n * sizeof *x->rho, cudaMemcpyDeviceToDevice), what);
+}
+
+/* mDBC wall densities for the current positions, and with SlipMode 2 or 3 the wall velocities
+ * (the ghost node's velocity by Shepard's sum, mirrored about the wall's own), as the CPU's. */
+static void cu_mdbc(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed || !(x->c.mdbc && x->c.nnormal)) return;
+    if (x->mvel)
+        vres_mdbc_slip_cuda(b->n, x->dcells, x->pos, x->vel, x->rho, x->mass, x->type, x->normal, x->mvel, x->C,
+                            x->c.dim, x->c.slip, 0);
+    else vres_mdbc_cuda(b->n, x->dcells, x->pos, x->rho, x->mass, x->type, x->normal, x->C, x->c.dim);
+    launched(x, "mDBC");
+}
+
+/* mDBC, EOS, the interaction at the current (cell-sorted) state, then the two maxima. */
+static double cu_forces(vres_backend *b, int shift, double *visc_max)
+{
+    cuda_ctx *x = ctx_of(b);
+    const run_cfg *c = &x->c;
+    size_t n = b->n, bytes = 0;
+    double red[2] = {0, 0};
+    *visc_max = 0;
+    if (x->failed) return 0;
+    cu_mdbc(b);
+    vres_eos_loop_cuda(n, x->rho, x->press, c->rho0, c->B, c->gamma);
+    if (!launched(x, "EOS")) return 0;
+    if (c->dim == 2) {
+        split2d_cuda(n, n, x->pos, x->vel, x->rho, x->x2d, x->v2d, x->inv_rho);
+        vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, x->rho, x->press, x->inv_rho, x->mass, x->type};
+        if (!launched(x, "2D split arrays") ||
+            !ok(x, cudaMemcpy(x->dP, &P, sizeof P, cudaMemcpyHostToDevice), "copy the 2D arrays' set"))
+            return 0;
+        if (c->general)
+            vres_sph2d_general_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
+                                    c->ddt, c->nwall > 0, c->visco_kind, shift);
+        else
+            pick_interaction2d(c, shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc,
+                                         x->shiftv);
+    } else if (c->general)
+        vres_sph_general_cuda(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar,
+                              x->visc, x->shiftv, c->ddt, c->nwall > 0, c->visco_kind, shift);
+    else if (shift)
+        x->interact_shift(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar,
+                          x->visc, x->shiftv);
+    else
+        x->interact(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar, x->visc);
+    if (!launched(x, "interaction")) return 0;
+    double *a2 = (double *)x->scratch[2]; /* the 8-byte gather scratch is free between sorts */
+    accel2_cuda(n, x->type, x->ace, a2);
+    if (!launched(x, "fluid accelerations") ||
+        !ok(x, cub::DeviceReduce::Reduce(NULL, bytes, a2, x->dred, (int)n, max_op(), 0.0), "largest acceleration") ||
+        !grow_temp(x, bytes) ||
+        !ok(x, cub::DeviceReduce::Reduce(x->temp, bytes, a2, x->dred, (int)n, max_op(), 0.0), "largest acceleration"))
+        return 0;
+    bytes = 0;
+    if (!ok(x, cub::DeviceReduce::Reduce(NULL, bytes, x->visc, x->dred + 1, (int)n, max_op(), 0.0),
+            "largest viscous rate") ||
+        !grow_temp(x, bytes) ||
+        !ok(x, cub::DeviceReduce::Reduce(x->temp, bytes, x->visc, x->dred + 1, (int)n, max_op(), 0.0),
+            "largest viscous rate") ||
+        !ok(x, cudaMemcpy(red, x->dred, sizeof red, cudaMemcpyDeviceToHost), "copy the maxima"))
+        return 0;
+    *visc_max = red[1];
+    return sqrt(red[0]);
+}
+
+/* Symplectic predictor. */
+static void cu_predict(vres_backend *b, double dt)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed) return;
+    vres_sph_predict_cuda(b->n, x->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, x->pos, x->vel, x->rho, dt,
+                          x->c.rho0);
+    launched(x, "predictor");
+}
+
+/* The shifting displacement from the last sums and the current velocity (before the update). */
+static void shift_compute(cuda_ctx *x, size_t n, double dt)
+{
+    vres_shift_cuda(n, x->type, x->vel, x->shiftv, dt, x->c.shift_coef * x->c.h, x->c.shift_tfs, x->c.dim,
+                    0.1 * x->dp);
+    launched(x, "shifting");
+}
+
+/* Symplectic corrector, with the shifting of the predicted state (as the CPU backend). */
+static void cu_correct(vres_backend *b, double dt, int shift)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed) return;
+    if (shift) shift_compute(x, b->n, dt);
+    vres_sph_correct_cuda(b->n, x->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, x->pos, x->vel, x->rho, dt,
+                          x->c.rho0);
+    if (shift) shift_apply_cuda(b->n, x->shiftv, x->pos);
+    launched(x, "corrector");
+}
+
+/* One Verlet step. */
+static void cu_verlet(vres_backend *b, double dt, int euler, int shift)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed) return;
+    if (shift) shift_compute(x, b->n, dt);
+    vres_sph_verlet_cuda(b->n, x->type, x->pos, x->vel, x->rho, x->velm1, x->rhom1, x->ace, x->ar, dt, euler,
+                         x->c.rho0);
+    if (shift) shift_apply_cuda(b->n, x->shiftv, x->pos);
+    launched(x, "Verlet step");
+}
+
+/* Moving walls to their bodies' transforms mv (copied to the device), with the rigid velocity field. */
+static void cu_move_walls(vres_backend *b, const vres_motion_state *mv)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed || !x->xref) return;
+    if (!ok(x, cudaMemcpy(x->dmv, mv, x->nbodies * sizeof *mv, cudaMemcpyHostToDevice), "copy the motions")) return;
+    move_wall_cuda(b->n, x->type, x->mk, x->xref, x->pos, x->vel, x->mvel, x->dmv, x->dbody, x->nbodies);
+    launched(x, "moving walls");
+}
+
+/* Wrap along the periodic axes. */
+static void cu_wrap(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    const int *per = x->c.periodic;
+    if (x->failed || !(per[0] || per[1] || per[2])) return;
+    wrap_cuda(b->n, x->dcells, x->pos);
+    launched(x, "periodic wrap");
+}
+
+/* The first fatal slot, and the particles that left the box. */
+static size_t cu_check(vres_backend *b, size_t *nout)
+{
+    cuda_ctx *x = ctx_of(b);
+    const run_cfg *c = &x->c;
+    unsigned long long res[2] = {ULLONG_MAX, 0};
+    *nout = 0;
+    if (x->failed) return (size_t)-1;
+    if (!ok(x, cudaMemcpy(x->dres, res, sizeof res, cudaMemcpyHostToDevice), "check (reset)")) return (size_t)-1;
+    check_cuda(b->n, x->dcells, x->pos, x->vel, x->rho, x->type, c->rhop_min < c->rhop_max, c->rhop_min, c->rhop_max,
+               x->dres);
+    if (!launched(x, "check") || !ok(x, cudaMemcpy(res, x->dres, sizeof res, cudaMemcpyDeviceToHost), "check"))
+        return (size_t)-1;
+    *nout = (size_t)res[1];
+    return res[0] == ULLONG_MAX ? (size_t)-1 : (size_t)res[0];
+}
+
+/* Copy the particle state and its order-carrying arrays into the domain d. */
+static int cu_download(vres_backend *b, vres_domain *d)
+{
+    cuda_ctx *x = ctx_of(b);
+    size_t n = b->n;
+    const char *what = "copy the particles to the host";
+    if (x->failed) return -1;
+    if (!ok(x, cudaMemcpy(d->pos, x->pos, 3 * n * sizeof *d->pos, cudaMemcpyDeviceToHost), what) ||
+        !ok(x, cudaMemcpy(d->vel, x->vel, 3 * n * sizeof *d->vel, cudaMemcpyDeviceToHost), what) ||
+        !ok(x, cudaMemcpy(d->rho, x->rho, n * sizeof *d->rho, cudaMemcpyDeviceToHost), what) ||
+        !ok(x, cudaMemcpy(d->press, x->press, n * sizeof *d->press, cudaMemcpyDeviceToHost), what) ||
+        !ok(x, cudaMemcpy(d->mass_p, x->mass, n * sizeof *d->mass_p, cudaMemcpyDeviceToHost), what) ||
+        !ok(x, cudaMemcpy(d->type, x->type, n * sizeof *d->type, cudaMemcpyDeviceToHost), what) ||
+        !ok(x, cudaMemcpy(d->mk, x->mk, n * sizeof *d->mk, cudaMemcpyDeviceToHost), what) ||
+        !ok(x, cudaMemcpy(d->id, x->id, n * sizeof *d->id, cudaMemcpyDeviceToHost), what) ||
+        (x->normal && d->normal &&
+         !ok(x, cudaMemcpy(d->normal, x->normal, 3 * n * sizeof *d->normal, cudaMemcpyDeviceToHost), what)))
+        return -1;
+    d->n = n;
+    return 0;
+}
+
+/* Take the (compacted) domain back: every array, the moving walls' reference, and Verlet's
+ * previous step restarting from the current state. The cells are stale until the next sort. */
+static int cu_upload(vres_backend *b, const vres_domain *d, const double *xref)
+{
+    cuda_ctx *x = ctx_of(b);
+    size_t n = d->n;
+    const char *what = "copy the particles to the device";
+    if (x->failed) return -1;
+    if (n > x->cap) {
+        vres_error("cuda backend: upload of %zu particles, more than the %zu it has room for", n, x->cap);
+        return -1;
+    }
+    if (!ok(x, cudaMemcpy(x->pos, d->pos, 3 * n * sizeof *d->pos, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(x->vel, d->vel, 3 * n * sizeof *d->vel, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(x->rho, d->rho, n * sizeof *d->rho, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(x->press, d->press, n * sizeof *d->press, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(x->mass, d->mass_p, n * sizeof *d->mass_p, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(x->type, d->type, n * sizeof *d->type, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(x->mk, d->mk, n * sizeof *d->mk, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(x->id, d->id, n * sizeof *d->id, cudaMemcpyHostToDevice), what) ||
+        (x->normal &&
+         !ok(x, cudaMemcpy(x->normal, d->normal, 3 * n * sizeof *d->normal, cudaMemcpyHostToDevice), what)) ||
+        (x->xref && xref && !ok(x, cudaMemcpy(x->xref, xref, 3 * n * sizeof *xref, cudaMemcpyHostToDevice), what)) ||
+        (x->velm1 && !ok(x, cudaMemcpy(x->velm1, d->vel, 3 * n * sizeof *d->vel, cudaMemcpyHostToDevice), what)) ||
+        (x->rhom1 && !ok(x, cudaMemcpy(x->rhom1, d->rho, n * sizeof *d->rho, cudaMemcpyHostToDevice), what)) ||
+        (x->mvel && !ok(x, cudaMemset(x->mvel, 0, 3 * n * sizeof *x->mvel), what)))
+        return -1;
+    b->n = n;
+    x->sorted_n = (size_t)-1;
+    return 0;
+}
+
+/* The moving walls' reference positions in slot order. */
+static void cu_get_xref(vres_backend *b, double *xref)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed || !x->xref) return;
+    ok(x, cudaMemcpy(xref, x->xref, 3 * b->n * sizeof *xref, cudaMemcpyDeviceToHost), "copy the walls' reference");
+}
+
+/* Ordered pairs within 2h (cells as of the last sort; positions now); 0 when the cells are stale. */
+static size_t cu_count_pairs(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    size_t n = b->n, bytes = 0;
+    unsigned long long total = 0, *cnt = (unsigned long long *)x->scratch[2]; /* free between sorts */
+    if (x->failed || x->sorted_n != n) return 0;
+    pairs_cuda(n, x->dcells, x->pos, x->C.fourh2, cnt);
+    if (!launched(x, "count pairs") ||
+        !ok(x, cub::DeviceReduce::Sum(NULL, bytes, cnt, x->dres, (int)n), "sum pairs") || !grow_temp(x, bytes) ||
+        !ok(x, cub::DeviceReduce::Sum(x->temp, bytes, cnt, x->dres, (int)n), "sum pairs") ||
+        !ok(x, cudaMemcpy(&total, x->dres, sizeof total, cudaMemcpyDeviceToHost), "sum pairs"))
+        return 0;
+    return (size_t)total;
+}
+
+/* Free one device array (a failure is reported like any other, once). */
+static void release(cuda_ctx *x, void *p)
+{
+    if (p) ok(x, cudaFree(p), "free device memory");
+}
+
+/* Free every device array and the context. */
+static void cu_close(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (!x) return;
+    void *arrays[] = {x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->mk, x->id, x->normal, x->pos0,
+                      x->vel0, x->rho0, x->ace, x->ar, x->visc, x->shiftv, x->velm1, x->rhom1, x->xref, x->mvel, x->x2d,
+                      x->v2d, x->inv_rho, x->hc.begin, x->hc.perm, x->dcells, x->key, x->key_sorted, x->slot,
+                      x->scratch[0], x->scratch[1], x->scratch[2], x->scratch[3], x->scratch[4], x->temp, x->dC,
+                      x->dP, x->dred, x->dres, x->dmv, x->dbody};
+    for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) release(x, arrays[k]);
+    free(x);
+    b->ctx = NULL;
+}
+
+/* Allocate and fill every device array for domain d of store s. 1, or 0 after printing why. */
+static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
+{
+    const run_cfg *c = &x->c;
+    size_t n = d->n;
+    const char *what = "upload the particles";
+    if (!alloc_copy(x, &x->pos, d->pos, n, 3, what) || !alloc_copy(x, &x->vel, d->vel, n, 3, what) ||
+        !alloc_copy(x, &x->rho, d->rho, n, 1, what) || !alloc_copy(x, &x->press, d->press, n, 1, what) ||
+        !alloc_copy(x, &x->mass, d->mass_p, n, 1, what) || !alloc_copy(x, &x->type, d->type, n, 1, what) ||
+        !alloc_copy(x, &x->mk, d->mk, n, 1, what) || !alloc_copy(x, &x->id, d->id, n, 1, what) ||
+        (d->normal && !alloc_copy(x, &x->normal, d->normal, n, 3, what)))
+        return 0;
+    what = "allocate the work arrays";
+    if (!alloc(x, &x->pos0, 3 * n * sizeof *x->pos0, what) || !alloc(x, &x->vel0, 3 * n * sizeof *x->vel0, what) ||
+        !alloc(x, &x->rho0, n * sizeof *x->rho0, what) || !alloc(x, &x->ace, 3 * n * sizeof *x->ace, what) ||
+        !alloc(x, &x->ar, n * sizeof *x->ar, what) || !alloc(x, &x->visc, n * sizeof *x->visc, what) ||
+        !ok(x, cudaMemset(x->ace, 0, 3 * n * sizeof *x->ace), what) ||
+        !ok(x, cudaMemset(x->ar, 0, n * sizeof *x->ar), what) ||
+        !ok(x, cudaMemset(x->visc, 0, n * sizeof *x->visc), what))
+        return 0;
+    if (c->shift && !(alloc(x, &x->shiftv, 4 * n * sizeof *x->shiftv, what) &&
+                      ok(x, cudaMemset(x->shiftv, 0, 4 * n * sizeof *x->shiftv), what)))
+        return 0;
+    if (c->dim == 2 && !(alloc(x, &x->x2d, 2 * n * sizeof *x->x2d, what) &&
+                         alloc(x, &x->v2d, 2 * n * sizeof *x->v2d, what) &&
+                         alloc(x, &x->inv_rho, n * sizeof *x->inv_rho, what)))
+        return 0;
+    if (c->mdbc && c->slip >= 2 && !(alloc(x, &x->mvel, 3 * n * sizeof *x->mvel, what) &&
+                                     ok(x, cudaMemset(x->mvel, 0, 3 * n * sizeof *x->mvel), what)))
+        return 0;
+    /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
+    if (c->verlet && !(alloc_copy(x, &x->velm1, d->vel, n, 3, what) && alloc_copy(x, &x->rhom1, d->rho, n, 1, what)))
+        return 0;
+    if (c->nmoving) {
+        wall_body *wb = (wall_body *)vres_xcalloc(s->nbodies + 1, sizeof *wb);
+        for (size_t k = 0; k < s->nbodies; k++)
+            wb[k].mkbound = s->body[k].mkbound, wb[k].moving = s->body[k].kind == VRES_MOVING;
+        int good = alloc_copy(x, &x->xref, d->pos, n, 3, what) && alloc_copy(x, &x->dbody, wb, s->nbodies, 1, what) &&
+                   alloc(x, &x->dmv, s->nbodies * sizeof *x->dmv, what);
+        free(wb);
+        if (!good) return 0;
+    }
+    what = "allocate the cells";
+    for (int k = 0; k < 5; k++)
+        if (!alloc(x, &x->scratch[k], n * scratch_size[k], what)) return 0;
+    if (!alloc(x, &x->key, n * sizeof *x->key, what) || !alloc(x, &x->key_sorted, n * sizeof *x->key_sorted, what) ||
+        !alloc(x, &x->slot, n * sizeof *x->slot, what) || !alloc(x, &x->hc.perm, n * sizeof *x->hc.perm, what) ||
+        !alloc(x, &x->hc.begin, (x->hc.ncells + 2) * sizeof *x->hc.begin, what) ||
+        !ok(x, cudaMemset(x->hc.begin, 0, (x->hc.ncells + 2) * sizeof *x->hc.begin), what) ||
+        !alloc_copy(x, &x->dcells, &x->hc, 1, 1, what))
+        return 0;
+    vres_sph_2d none;
+    memset(&none, 0, sizeof none);
+    return alloc_copy(x, &x->dC, &x->C, 1, 1, what) && alloc_copy(x, &x->dP, &none, 1, 1, what) &&
+           alloc(x, &x->dred, 2 * sizeof *x->dred, what) && alloc(x, &x->dres, 2 * sizeof *x->dres, what);
+}
+
+extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c)
+{
+    if (vres_cuda_device_count() < 1) {
+        vres_error("CUDA: no GPU answers: cannot run on the CUDA backend (use --device cpu or auto)");
+        return -1;
+    }
+    if (d->n > (size_t)INT_MAX) {
+        vres_error("CUDA: %zu particles: the CUDA backend holds at most %d", d->n, INT_MAX);
+        return -1;
+    }
+    cuda_ctx *x = (cuda_ctx *)vres_xcalloc(1, sizeof *x);
+    x->c = *c;
+    x->C = vres_run_consts(c);
+    x->dp = d->dp;
+    x->cap = d->n;
+    x->nbodies = s->nbodies;
+    x->sorted_n = (size_t)-1;
+    b->ctx = x;
+    cudaDeviceProp prop;
+    if (!ok(x, cudaGetDeviceProperties(&prop, 0), "device properties")) {
+        cu_close(b);
+        return -1;
+    }
+    snprintf(x->name, sizeof x->name, "cuda(%s)", prop.name);
+    /* the cells' geometry from the host's own set-up; its host offsets are replaced by device ones */
+    vres_cells hg;
+    if (vres_cells_init(&hg, c->dim, 2.0 * c->h, c->box_lo, c->box_hi, c->periodic) != 0) {
+        cu_close(b);
+        return -1;
+    }
+    x->hc = hg;
+    x->hc.begin = x->hc.perm = x->hc.key = NULL;
+    x->hc.scratch = NULL;
+    x->hc.cap = x->hc.n = x->hc.nout = 0;
+    vres_cells_free(&hg);
+    for (x->key_bits = 1; x->key_bits < 32 && (1ULL << x->key_bits) <= x->hc.ncells; x->key_bits++) continue;
+    if (!cu_setup(x, s, d)) {
+        cu_close(b);
+        return -1;
+    }
+    x->interact = pick_interaction(c);
+    x->interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
+    memset(b, 0, sizeof *b);
+    b->ctx = x;
+    b->n = d->n;
+    b->name = x->name;
+    b->sort = cu_sort;
+    b->save_start = cu_save_start;
+    b->restore_start = cu_restore_start;
+    b->forces = cu_forces;
+    b->predict = cu_predict;
+    b->correct = cu_correct;
+    b->verlet = cu_verlet;
+    b->move_walls = cu_move_walls;
+    b->wrap = cu_wrap;
+    b->mdbc = cu_mdbc;
+    b->check = cu_check;
+    b->download = cu_download;
+    b->upload = cu_upload;
+    b->get_xref = cu_get_xref;
+    b->count_pairs = cu_count_pairs;
+    b->close = cu_close;
+    return 0;
+}

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# vres-run's choice of device and the CUDA backend (DESIGN section 6). Without a GPU
+# (cudaGetDeviceCount fails, error 35 on these machines): --device cuda is one clear error, exit
+# 1, and no run directory is made; --device auto runs on the CPU and says so in one line. With a
+# GPU: --device cuda runs the tank on it, names it in the module list, and keeps the particles
+# (ids, fluid count and mass: no particle is lost or duplicated by the device's cell sort). A
+# build where nvcc was found has the CUDA backend in libvres: vres_backend_cuda_open defined by
+# solver_cuda.cu's object, once (solver.c's stub is compiled only without it).
+source "$(dirname "$0")/../harness.sh"
+RUN=$BIN/vres-run
+LIB=$ROOT/$VRES_BUILD/libvres.a
+
+"$BIN/vres-gencase" -q --dp 0.04 "$CASES/hydrostatic2d/hydrostatic2d_Def.xml" -o "$T/tank.h5" || notok "gencase the tank"
+
+# the Makefile builds the CUDA sources wherever it finds nvcc (on PATH or /usr/local/cuda)
+if command -v nvcc >/dev/null 2>&1 || [ -x /usr/local/cuda/bin/nvcc ]; then
+    nm -A --defined-only "$LIB" 2>/dev/null | grep -E ' T vres_backend_cuda_open$' >"$T/nm"
+    check "libvres has the CUDA backend (vres_backend_cuda_open from solver_cuda.cu)" \
+        grep -q -E 'solver_cuda\.cu\.o: *[0-9a-f]+ T vres_backend_cuda_open$' "$T/nm"
+    check "libvres defines vres_backend_cuda_open once (no stub beside it)" [ "$(wc -l <"$T/nm")" -eq 1 ]
+else
+    ok "CUDA backend in libvres # SKIP no nvcc: the CUDA backend is not built"
+fi
+
+# a GPU is there when --device auto does not fall back to the CPU
+expect 0 "--device auto runs" "$RUN" --device auto --tmax 0.01 --tout 0.01 "$T/tank.h5" -o "$T/auto"
+if grep -q 'device auto: .*running on the CPU' "$ERR"; then
+    check "--device auto without a GPU: one line says it runs on the CPU" \
+        [ "$(grep -c -E 'no CUDA GPU answered|no CUDA support|running on the CPU' "$ERR")" -eq 1 ]
+    check "--device auto without a GPU: the CPU backend in the module list" grep -q 'modules: .* cpu-openmp(' "$ERR"
+    check "--device auto without a GPU: the run is written" [ -f "$T/auto/snap_00001.h5" ]
+    expect_err 1 '^vres-run: --device cuda: (no CUDA GPU answered|this build has no CUDA support)' \
+        "--device cuda without a GPU: refused" "$RUN" --device cuda --tmax 0.01 "$T/tank.h5" -o "$T/out"
+    check "--device cuda without a GPU: one line of error" [ "$(wc -l <"$ERR")" -eq 1 ]
+    check "--device cuda without a GPU: no run directory made" [ ! -e "$T/out" ]
+else
+    expect 0 "--device cuda with a GPU: runs the tank" "$RUN" --device cuda --tmax 0.01 --tout 0.01 "$T/tank.h5" -o "$T/gpu"
+    check "--device cuda with a GPU: the CUDA backend in the module list" grep -q 'modules: .* cuda(' "$ERR"
+    values /Domains/D0/Id "$T/tank.h5" | sort -n >"$T/id0"
+    values /Domains/D0/Id "$T/gpu/snap_00001.h5" | sort -n >"$T/id1"
+    check "--device cuda: the same particle ids after the run" cmp -s "$T/id0" "$T/id1"
+    # the store's fluid count and mass, read with h5dump; run.tsv prints the mass to 9 digits
+    read nf mf < <(paste <(values /Domains/D0/Type "$T/tank.h5") <(values /Domains/D0/Mass "$T/tank.h5") |
+                   awk '$1 == 0 {n++; m += $2} END {printf "%d %.9g\n", n, m}')
+    check "--device cuda: fluid count and mass kept ($nf particles, $mf kg)" \
+        awk -F'\t' -v n="$nf" -v m="$mf" '!/^#/ && ($4 != n || ($6 - m) ^ 2 > (1e-8 * m) ^ 2) {exit 1}' \
+        "$T/gpu/run.tsv"
+fi
