@@ -40,10 +40,23 @@ DPS_poiseuille2d           ?= 1e-4 5e-5 2.5e-5
 DPS_couette2d              ?= 1e-4 5e-5 2.5e-5
 DPS_taylor_green2d         ?= 0.04 0.02 0.01
 DPS_cavity_re100           ?= 0.05 0.04 0.03125 0.025
+# Dam break on the Lobovsky tank (wall pressures) and against Ritter (depth profile); not in the
+# default list: `make sweep SWEEP_CASES="dambreak_lobovsky2d ritter2d"`. The finest Lobovsky run
+# (dp 0.0075, 4,355 particles, about 16,500 steps to t = 1 s) sets their time; dp 0.005 (8,900
+# particles, 25,000 steps) would take three times as long. Measured run times: each case's README.
+DPS_dambreak_lobovsky2d    ?= 0.02 0.01 0.0075
+DPS_ritter2d               ?= 0.1 0.05 0.025
+# Lid-driven cavity at Re = 1000 (not in the default list: `make sweep SWEEP_CASES=cavity_re1000`):
+# 30 s of flow each; the finest run (dp 0.025, 5,740 particles with the 30 m lid, about 56,600
+# steps) sets the time. Measured run times: cases/cavity_re1000/README.md.
+DPS_cavity_re1000          ?= 0.04 0.03125 0.025
 
 # Where the reference is an experiment, also the case's convergence against itself
 # (pipelines/selfconv.sh): the command printing the case's series from a run directory.
 SERIES_dambreak_front2d    := pipelines/front.sh --dimensionless
+# Ritter's solution is the shallow-water limit, which the computed (non-hydrostatic) flow only
+# approaches: the depth profile at the last snapshot (t sqrt(g/h0) = 3) measures the numerics.
+SERIES_ritter2d            := cases/ritter2d/profile
 
 all: $(foreach c,$(SWEEP_CASES),$(REPORTS)/$(c)/error_vs_time.png)
 

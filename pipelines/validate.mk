@@ -30,6 +30,7 @@ V       := $(RUNS)/validate
 
 VALIDATE ?= dambreak_front2d:0.02 dambreak_front2d:0.01 hydrostatic_profile2d:0.02 \
             poiseuille2d:5e-5 couette2d:5e-5 poiseuille_mdbc2d:5e-5 cavity_re100:0.02 \
+            dambreak_lobovsky2d:0.01 ritter2d:0.05 \
             stiff_rest2d: stiff_impact2d: stiff_lowvisc2d: stiff_tinydp2d:
 
 case_of = $(word 1,$(subst :, ,$(1)))
