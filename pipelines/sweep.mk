@@ -28,7 +28,7 @@ JOBS    ?= 2
 THREADS ?= 1
 REPORTS ?= pipelines/reports
 
-SWEEP_CASES ?= dambreak_front2d hydrostatic_profile2d poiseuille2d couette2d cavity_re100
+SWEEP_CASES ?= dambreak_front2d hydrostatic_profile2d poiseuille2d couette2d cavity_re100 taylor_green2d
 
 # Resolutions per case, coarse to fine. The finest run sets a case's time: on one core of the
 # 2-core development VM the dam break at dp 0.01 (23,030 particles, 19,072 steps) took 27 min
@@ -47,8 +47,8 @@ DPS_cavity_re100           ?= 0.05 0.04 0.03125 0.025
 DPS_dambreak_lobovsky2d    ?= 0.02 0.01 0.0075
 DPS_ritter2d               ?= 0.1 0.05 0.025
 # Lid-driven cavity at Re = 1000 (not in the default list: `make sweep SWEEP_CASES=cavity_re1000`):
-# 30 s of flow each; the finest run (dp 0.025, 5,740 particles with the 30 m lid, about 56,600
-# steps) sets the time. Measured run times: cases/cavity_re1000/README.md.
+# 30 s of flow each; the finest run (dp 0.025, 5,740 particles with the 30 m lid, 45,396 steps,
+# an estimated 8 min on a free core) sets the time. Measured run times: cases/cavity_re1000/README.md.
 DPS_cavity_re1000          ?= 0.04 0.03125 0.025
 
 # Where the reference is an experiment, also the case's convergence against itself
