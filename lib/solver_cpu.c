@@ -9,23 +9,10 @@
 #include "../kernels/eos.h"
 #include "../kernels/mdbc.h"
 #include "../kernels/sph.h"
+#include "../kernels/sph_pick.h"
 #include "cells.h"
 #include "log.h"
 #include "solver_int.h"
-
-/* One interaction loop variant (kernels/sph.h), chosen once per run. */
-typedef void (*interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel, const float *rho,
-                            const float *press, const double *mass, const uint8_t *type, vres_sph_consts C,
-                            double *ace, double *ar, double *visc);
-
-/* One interaction loop variant with the shifting sums (kernels/sph.h). */
-typedef void (*interact_shift_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
-                                  const float *rho, const float *press, const double *mass, const uint8_t *type,
-                                  vres_sph_consts C, double *ace, double *ar, double *visc, double *shiftv);
-
-/* One 2D interaction loop variant (kernels/sph.h: vres_sph2d_*), over n = ncells + 1 cells. */
-typedef void (*interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
-                              double *ace, double *ar, double *visc, double *shiftv);
 
 /* The CPU backend's state: the domain's arrays are the store's; these are the rest. */
 typedef struct cpu_ctx {
@@ -50,8 +37,8 @@ typedef struct cpu_ctx {
     double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
     float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
     double *inv_rho;      /* [n] 2D: 1/density of each particle (m^3/kg) */
-    interact_fn interact;             /* 3D variant without shifting sums */
-    interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
+    vres_interact_fn interact;             /* 3D variant without shifting sums */
+    vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
 } cpu_ctx;
 
 /* The index of the moving body whose mkbound is mk, or -1. */
@@ -62,46 +49,8 @@ static int body_of(const vres_store *s, int mk)
     return -1;
 }
 
-/* The interaction variant for this scene: no diffusion code when DensityDT=0, no wall tests
- * when there are no walls, only the viscosity asked for. */
-static interact_fn pick_interaction(const run_cfg *c)
-{
-    static const interact_fn table[2][2][3] = {
-        {{vres_sph_plain_cpu, vres_sph_molteni_cpu, vres_sph_fourtakas_cpu},
-         {vres_sph_dbc_cpu, vres_sph_dbc_molteni_cpu, vres_sph_dbc_fourtakas_cpu}},
-        {{vres_sph_laminar_plain_cpu, vres_sph_laminar_molteni_cpu, vres_sph_laminar_fourtakas_cpu},
-         {vres_sph_laminar_dbc_cpu, vres_sph_laminar_dbc_molteni_cpu, vres_sph_laminar_dbc_fourtakas_cpu}}};
-    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
-
-/* The shifting variant of pick_interaction's choice. */
-static interact_shift_fn pick_interaction_shift(const run_cfg *c)
-{
-    static const interact_shift_fn table[2][2][3] = {
-        {{vres_sph_shift_plain_cpu, vres_sph_shift_molteni_cpu, vres_sph_shift_fourtakas_cpu},
-         {vres_sph_shift_dbc_cpu, vres_sph_shift_dbc_molteni_cpu, vres_sph_shift_dbc_fourtakas_cpu}},
-        {{vres_sph_shift_laminar_plain_cpu, vres_sph_shift_laminar_molteni_cpu, vres_sph_shift_laminar_fourtakas_cpu},
-         {vres_sph_shift_laminar_dbc_cpu, vres_sph_shift_laminar_dbc_molteni_cpu,
-          vres_sph_shift_laminar_dbc_fourtakas_cpu}}};
-    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
-
-/* The 2D variant for this scene, with the shifting sums when shift is 1. */
-static interact2d_fn pick_interaction2d(const run_cfg *c, int shift)
-{
-    static const interact2d_fn table[2][2][2][3] = {
-        {{{vres_sph2d_plain_cpu, vres_sph2d_molteni_cpu, vres_sph2d_fourtakas_cpu},
-          {vres_sph2d_dbc_cpu, vres_sph2d_dbc_molteni_cpu, vres_sph2d_dbc_fourtakas_cpu}},
-         {{vres_sph2d_laminar_plain_cpu, vres_sph2d_laminar_molteni_cpu, vres_sph2d_laminar_fourtakas_cpu},
-          {vres_sph2d_laminar_dbc_cpu, vres_sph2d_laminar_dbc_molteni_cpu, vres_sph2d_laminar_dbc_fourtakas_cpu}}},
-        {{{vres_sph2d_shift_plain_cpu, vres_sph2d_shift_molteni_cpu, vres_sph2d_shift_fourtakas_cpu},
-          {vres_sph2d_shift_dbc_cpu, vres_sph2d_shift_dbc_molteni_cpu, vres_sph2d_shift_dbc_fourtakas_cpu}},
-         {{vres_sph2d_shift_laminar_plain_cpu, vres_sph2d_shift_laminar_molteni_cpu,
-           vres_sph2d_shift_laminar_fourtakas_cpu},
-          {vres_sph2d_shift_laminar_dbc_cpu, vres_sph2d_shift_laminar_dbc_molteni_cpu,
-           vres_sph2d_shift_laminar_dbc_fourtakas_cpu}}}};
-    return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
+/* The interaction variant choosers (kernels/sph_pick.h) over this backend's loops. */
+VRES_SPH_PICKERS(_cpu)
 
 /* The context of backend b. */
 static cpu_ctx *ctx_of(vres_backend *b)

@@ -22,27 +22,13 @@
 #include "../kernels/eos.h"
 #include "../kernels/mdbc.h"
 #include "../kernels/sph.h"
+#include "../kernels/sph_pick.h"
 #include "cells.h"
 #include "solver_int.h"
 extern "C" { /* C headers without their own extern "C" guard */
 #include "device.h"
 #include "log.h"
 }
-
-/* One 3D interaction loop variant (kernels/sph.h), chosen once per run; g is a device pointer. */
-typedef void (*interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel, const float *rho,
-                            const float *press, const double *mass, const uint8_t *type, vres_sph_consts C,
-                            double *ace, double *ar, double *visc);
-
-/* One 3D interaction loop variant with the shifting sums (kernels/sph.h). */
-typedef void (*interact_shift_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
-                                  const float *rho, const float *press, const double *mass, const uint8_t *type,
-                                  vres_sph_consts C, double *ace, double *ar, double *visc, double *shiftv);
-
-/* One 2D interaction loop variant (kernels/sph.h: vres_sph2d_*), over n = ncells + 1 cells;
- * g, P and C are device pointers. */
-typedef void (*interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
-                              double *ace, double *ar, double *visc, double *shiftv);
 
 /* What move_walls needs of a body to find a moving wall particle's one (solver_cpu.c's body_of). */
 typedef struct wall_body {
@@ -106,8 +92,8 @@ typedef struct cuda_ctx {
     vres_motion_state *dmv;   /* [nbodies] the bodies' transforms for move_walls; NULL without moving walls */
     wall_body *dbody;     /* [nbodies] which bodies move, by mkbound; NULL without moving walls */
 
-    interact_fn interact;             /* 3D variant without shifting sums */
-    interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
+    vres_interact_fn interact;             /* 3D variant without shifting sums */
+    vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
 } cuda_ctx;
 
 /* Check a CUDA result: 1 on success; otherwise print "CUDA: what: message" (only the first
@@ -310,48 +296,10 @@ struct max_op {
     __host__ __device__ double operator()(double a, double b) const { return fmax(a, b); }
 };
 
-/* ---- variant tables (the same as solver_cpu.c's, with the _cuda launchers) ---- */
+/* ---- variant tables ---- */
 
-/* The 3D interaction variant for this scene (viscosity kind x walls x DensityDT). */
-static interact_fn pick_interaction(const run_cfg *c)
-{
-    static const interact_fn table[2][2][3] = {
-        {{vres_sph_plain_cuda, vres_sph_molteni_cuda, vres_sph_fourtakas_cuda},
-         {vres_sph_dbc_cuda, vres_sph_dbc_molteni_cuda, vres_sph_dbc_fourtakas_cuda}},
-        {{vres_sph_laminar_plain_cuda, vres_sph_laminar_molteni_cuda, vres_sph_laminar_fourtakas_cuda},
-         {vres_sph_laminar_dbc_cuda, vres_sph_laminar_dbc_molteni_cuda, vres_sph_laminar_dbc_fourtakas_cuda}}};
-    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
-
-/* The shifting variant of pick_interaction's choice. */
-static interact_shift_fn pick_interaction_shift(const run_cfg *c)
-{
-    static const interact_shift_fn table[2][2][3] = {
-        {{vres_sph_shift_plain_cuda, vres_sph_shift_molteni_cuda, vres_sph_shift_fourtakas_cuda},
-         {vres_sph_shift_dbc_cuda, vres_sph_shift_dbc_molteni_cuda, vres_sph_shift_dbc_fourtakas_cuda}},
-        {{vres_sph_shift_laminar_plain_cuda, vres_sph_shift_laminar_molteni_cuda,
-          vres_sph_shift_laminar_fourtakas_cuda},
-         {vres_sph_shift_laminar_dbc_cuda, vres_sph_shift_laminar_dbc_molteni_cuda,
-          vres_sph_shift_laminar_dbc_fourtakas_cuda}}};
-    return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
-
-/* The 2D variant for this scene, with the shifting sums when shift is 1. */
-static interact2d_fn pick_interaction2d(const run_cfg *c, int shift)
-{
-    static const interact2d_fn table[2][2][2][3] = {
-        {{{vres_sph2d_plain_cuda, vres_sph2d_molteni_cuda, vres_sph2d_fourtakas_cuda},
-          {vres_sph2d_dbc_cuda, vres_sph2d_dbc_molteni_cuda, vres_sph2d_dbc_fourtakas_cuda}},
-         {{vres_sph2d_laminar_plain_cuda, vres_sph2d_laminar_molteni_cuda, vres_sph2d_laminar_fourtakas_cuda},
-          {vres_sph2d_laminar_dbc_cuda, vres_sph2d_laminar_dbc_molteni_cuda, vres_sph2d_laminar_dbc_fourtakas_cuda}}},
-        {{{vres_sph2d_shift_plain_cuda, vres_sph2d_shift_molteni_cuda, vres_sph2d_shift_fourtakas_cuda},
-          {vres_sph2d_shift_dbc_cuda, vres_sph2d_shift_dbc_molteni_cuda, vres_sph2d_shift_dbc_fourtakas_cuda}},
-         {{vres_sph2d_shift_laminar_plain_cuda, vres_sph2d_shift_laminar_molteni_cuda,
-           vres_sph2d_shift_laminar_fourtakas_cuda},
-          {vres_sph2d_shift_laminar_dbc_cuda, vres_sph2d_shift_laminar_dbc_molteni_cuda,
-           vres_sph2d_shift_laminar_dbc_fourtakas_cuda}}}};
-    return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];
-}
+/* The interaction variant choosers (kernels/sph_pick.h) over this backend's loops. */
+VRES_SPH_PICKERS(_cuda)
 
 /* ---- the operations ---- */
 

@@ -1,0 +1,57 @@
+/* sph_pick.h - choosing, once per run, the interaction loop variant of kernels/sph.h that fits a
+ * scene (viscosity kind x walls present x density diffusion kind, with or without the shifting
+ * sums; 2D or 3D). VRES_SPH_PICKERS(_cpu) or VRES_SPH_PICKERS(_cuda) defines the three choosers
+ * over one device's loops, so the CPU backend (lib/solver_cpu.c) and the CUDA backend
+ * (lib/solver_cuda.cu) pick from the same tables. */
+#ifndef VRES_KERNELS_SPH_PICK_H
+#define VRES_KERNELS_SPH_PICK_H
+
+#include "../lib/solver_int.h"
+#include "sph.h"
+
+/* A 3D interaction loop variant (vres_sph_*). */
+typedef void (*vres_interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
+                                 const float *rho, const float *press, const double *mass, const uint8_t *type,
+                                 vres_sph_consts C, double *ace, double *ar, double *visc);
+
+/* A 3D interaction loop variant with the shifting sums (vres_sph_shift_*). */
+typedef void (*vres_interact_shift_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
+                                       const float *rho, const float *press, const double *mass,
+                                       const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
+                                       double *visc, double *shiftv);
+
+/* A 2D interaction loop variant (vres_sph2d_*), over n = ncells + 1 cells. */
+typedef void (*vres_interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
+                                   double *ace, double *ar, double *visc, double *shiftv);
+
+/* The six loops of one kind for one device: [walls][DensityDT]. */
+#define VRES_SPH_ROW6(pre, sfx)                                                                        \
+    {{pre##plain##sfx, pre##molteni##sfx, pre##fourtakas##sfx},                                        \
+     {pre##dbc##sfx, pre##dbc_molteni##sfx, pre##dbc_fourtakas##sfx}}
+
+/* pick_interaction (3D, no shifting sums), pick_interaction_shift (3D, with them) and
+ * pick_interaction2d (2D, shift 0 or 1) for run configuration c, over the loops with suffix
+ * sfx: no diffusion code when DensityDT=0, no wall tests without walls, only the viscosity
+ * asked for. */
+#define VRES_SPH_PICKERS(sfx)                                                                          \
+    static vres_interact_fn pick_interaction(const run_cfg *c)                                         \
+    {                                                                                                  \
+        static const vres_interact_fn table[2][2][3] = {VRES_SPH_ROW6(vres_sph_, sfx),                 \
+                                                        VRES_SPH_ROW6(vres_sph_laminar_, sfx)};        \
+        return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];                        \
+    }                                                                                                  \
+    static vres_interact_shift_fn pick_interaction_shift(const run_cfg *c)                             \
+    {                                                                                                  \
+        static const vres_interact_shift_fn table[2][2][3] = {VRES_SPH_ROW6(vres_sph_shift_, sfx),     \
+                                                              VRES_SPH_ROW6(vres_sph_shift_laminar_, sfx)}; \
+        return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];                        \
+    }                                                                                                  \
+    static vres_interact2d_fn pick_interaction2d(const run_cfg *c, int shift)                          \
+    {                                                                                                  \
+        static const vres_interact2d_fn table[2][2][2][3] = {                                          \
+            {VRES_SPH_ROW6(vres_sph2d_, sfx), VRES_SPH_ROW6(vres_sph2d_laminar_, sfx)},                \
+            {VRES_SPH_ROW6(vres_sph2d_shift_, sfx), VRES_SPH_ROW6(vres_sph2d_shift_laminar_, sfx)}};   \
+        return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];                 \
+    }
+
+#endif
