@@ -25,7 +25,8 @@ VTK_INC   ?= /usr/include/vtk-9.1
 VTK_LIBS  ?= -lvtkIOXML-9.1 -lvtkIOCore-9.1 -lvtkCommonExecutionModel-9.1 -lvtkCommonDataModel-9.1 -lvtkCommonCore-9.1
 CHECK_LIBS := $(shell pkg-config --libs check 2>/dev/null)
 
-OPT       ?= -O2 -g
+# -fno-math-errno: sqrt sets no errno, so the interaction's vector loops can use it
+OPT       ?= -O2 -g -fno-math-errno
 WARN      := -Wall -Wextra
 CFLAGS    := -std=c11 $(WARN) $(OPT) -fopenmp -D_POSIX_C_SOURCE=200809L -Ilib -Ikernels $(PKG_CFLAGS)
 CXXFLAGS  := -std=c++17 $(WARN) $(OPT) -Ilib -isystem $(VTK_INC)

@@ -130,9 +130,10 @@ VRES_HD static inline double vres_sph_pair_ddt(const vres_sph_consts *C, int fou
     if (fourtakas) {
         /* (1 + x)^(1/gamma) - 1 by its series to x^3: x = -rho0 g.x_ab / B is below 1e-3 within
            a kernel support (|g| 2h rho0 / B ~ 2h |g| gamma / c0^2), so the x^4 term is below
-           1e-13 relative: far under float density, and no pow per pair */
+           1e-13 relative: far under float density, and no pow per pair (the coefficients
+           (e - 1)/2 and (e - 2)/3 are constants of the run, so no division per pair either) */
         double x = -C->rho0_over_B * (C->g[0] * dx[0] + C->g[1] * dx[1] + C->g[2] * dx[2]), e = C->inv_gamma;
-        drho += C->rho0 * x * e * (1.0 + x * (e - 1.0) / 2.0 * (1.0 + x * (e - 2.0) / 3.0));
+        drho += C->rho0 * x * e * (1.0 + x * ((e - 1.0) / 2.0) * (1.0 + x * ((e - 2.0) / 3.0)));
     }
     return C->ddt_khc * drho * F * r2 * inv_r2eta * mb * inv_rhob;
 }
@@ -366,16 +367,30 @@ typedef struct vres_sph_2d {
     const uint8_t *type;   /* [n] particle types (store.h; 0 fluid) */
 } vres_sph_2d;
 
-/* Candidates a 2D particle keeps per pass over its neighbour ranges (more are done in turns). */
+/* Candidates a 2D particle looks at per pass over its neighbour ranges (more are done in turns).
+ * On a GPU each thread holds its pass's arrays in slow local memory, so its passes are short. */
+#ifdef __CUDA_ARCH__
+#define VRES_SPH_LIST 16
+#else
 #define VRES_SPH_LIST 128
+#endif
 
 /* vres_sph_interact for a 2D domain (x-z plane, y ignored: in 2D every y offset and y
  * velocity difference is zero, so the sums below are those of vres_sph_interact term for
  * term, in the same order, and give the same numbers). Particle a's neighbours lie in the
  * ranges nb[0..m) (vres_cells_rows2d of its cell, m = 0 for a particle outside the grid).
- * First a branch-free pass keeps the candidates inside the support (the cells hold about three
- * times as many as the kernel reaches, and a per-candidate branch is mispredicted about as
- * often as it is taken), then the pair physics runs over the kept ones only. */
+ * Each pass over up to VRES_SPH_LIST candidates
+ *   1. computes their distances (vector instructions over the contiguous run of slots);
+ *   2. keeps those inside the support, without a branch (the cells hold about three times as
+ *      many as the kernel reaches, and a per-candidate branch is mispredicted about as often
+ *      as it is taken);
+ *   3. gathers what the pair physics needs of each kept neighbour into arrays Q;
+ *   4. computes every pair's terms over those arrays into arrays T, without a branch (vector
+ *      instructions again: selects where vres_sph_interact branches);
+ *   5. adds the terms in pair order.
+ * Step 4 does each pair's arithmetic operation for operation as vres_sph_interact and the pair
+ * functions, so vector and scalar code give the same bits, and step 5 keeps the order of the
+ * sums: the results are vres_sph_interact's to the bit (tests/lib/test_solver.c checks it). */
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const vres_cell_range *nb, int m,
                                                                const vres_sph_2d *P, const vres_sph_consts *C,
                                                                double *ace, double *ar, double *visc,
@@ -385,86 +400,153 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
     const int fluid_a = !walls || P->type[a] == 0;
     const double xa = P->x[a], za = P->z[a], vxa = P->vx[a], vza = P->vz[a];
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
-    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2;
+    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2;
+    const vres_wendland k = C->k;
+    /* Visco of a fluid and of a wall neighbour: artificial viscosity alpha or laminar nu */
+    const double visc_fluid = viscosity == VRES_VISC_LAMINAR ? C->nu : C->alpha;
+    const double visc_wall = viscosity == VRES_VISC_LAMINAR ? C->nu_wall : C->alpha_wall;
     double accx = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcz = 0, divr = 0;
     int noshift = 0;
-    double ldx[VRES_SPH_LIST], ldz[VRES_SPH_LIST], lr2[VRES_SPH_LIST]; /* x_ab, z_ab, r^2 of a chunk's candidates (m, m^2) */
-    uint32_t lb[VRES_SPH_LIST]; /* slots of the kept candidates (a domain of 2^32 particles would need 400 GB) */
-    uint8_t lk[VRES_SPH_LIST];  /* their index among the chunk's candidates */
+    struct { /* one pass's candidates */
+        double dx[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, z_ab (m) */
+        double r2[VRES_SPH_LIST];                    /* r^2 (m^2) */
+        size_t b[VRES_SPH_LIST];                     /* slot */
+        double in[VRES_SPH_LIST]; /* 1 inside the support (not a itself), else 0; a double, so
+                                     that the distance loop works on one vector type */
+        uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
+    } L;
+    struct { /* the kept pairs: what the physics needs of b */
+        double dx[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, z_ab (m) */
+        double r2[VRES_SPH_LIST];                    /* r^2 (m^2) */
+        double vx[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s) */
+        double mb[VRES_SPH_LIST];                    /* b's mass (kg) */
+        double rhob[VRES_SPH_LIST];                  /* b's density (kg/m^3) */
+        double inv_rhob[VRES_SPH_LIST];              /* 1/rho_b (m^3/kg) */
+        double pb[VRES_SPH_LIST];                    /* b's pressure (Pa) */
+        double wall[VRES_SPH_LIST];                  /* 1 for a wall b, else 0 (set when walls) */
+        double visc[VRES_SPH_LIST];                  /* the pair's Visco: visc_fluid or visc_wall (set when walls) */
+    } Q;
+    struct { /* each kept pair's terms of a's sums */
+        double arp[VRES_SPH_LIST];  /* continuity m_b v_ab . grad_a W_ab (kg/m^3/s) */
+        double rate[VRES_SPH_LIST]; /* x_ab . v_ab / (r^2 + eta2) (1/s) */
+        double px[VRES_SPH_LIST], pz[VRES_SPH_LIST]; /* pressure term, subtracted from acc (m/s^2) */
+        double vx[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* viscous term: subtracted (artificial) or added
+                                                        (laminar) (m/s^2) */
+        double diff[VRES_SPH_LIST]; /* density diffusion (kg/m^3/s; 0 for a wall b) */
+        double gx[VRES_SPH_LIST], gz[VRES_SPH_LIST]; /* shifting: V_b grad_a W_ab (1/m) */
+        double div[VRES_SPH_LIST];  /* shifting: V_b x_ab . grad_a W_ab (subtracted from div r) */
+    } T;
     int c = 0;
     size_t b0 = m ? nb[0].begin : 0;
     while (c < m) {
-        int nc = 0, nl = 0; /* candidates in this chunk, kept among them */
+        int nc = 0; /* candidates in this pass */
         for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
             const double sx = nb[c].shift[0], sz = nb[c].shift[2];
             size_t e = nb[c].end;
             if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
             const int len = (int)(e - b0);
             const double *xb = P->x + b0, *zb = P->z + b0;
-            double *cdx = ldx + nc, *cdz = ldz + nc, *cr2 = lr2 + nc;
-            /* distances of the whole run at once (vector instructions), then the kept slots */
+            double *cdx = L.dx + nc, *cdz = L.dz + nc, *cr2 = L.r2 + nc, *cin = L.in + nc;
+            size_t *cb = L.b + nc;
+            /* 1: the distances of a run of slots */
 #pragma omp simd
             for (int j = 0; j < len; j++) {
-                double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
-                cdx[j] = dx, cdz[j] = dz, cr2[j] = dx * dx + dz * dz;
-            }
-            for (int j = 0; j < len; j++) {
-                lb[nl] = (uint32_t)(b0 + (size_t)j), lk[nl] = (uint8_t)(nc + j);
-                nl += cr2[j] < fourh2 && cr2[j] >= tiny; /* inside the support, not a itself */
+                double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz), r2 = dx * dx + dz * dz;
+                cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
+                cin[j] = r2 < fourh2 && r2 >= tiny ? 1.0 : 0.0;
             }
             nc += len;
             b0 = e;
-            if (e < nb[c].end) break; /* the chunk is full: use it, then go on from b0 */
+            if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
         }
-        for (int j = 0; j < nl; j++) {
-            const size_t b = lb[j];
+        /* 2: the kept ones */
+        int nkept = 0;
+        for (int j = 0; j < nc; j++) {
+            L.kept[nkept] = (uint8_t)j;
+            nkept += (int)L.in[j];
+        }
+        /* 3: their data; a wall particle a (DBC) leaves out its wall neighbours */
+        int np = 0;
+        for (int j = 0; j < nkept; j++) {
+            const int i = L.kept[j];
+            const size_t b = L.b[i];
             const int wall_b = walls && P->type[b] != 0;
-            if (!fluid_a && wall_b) continue; /* DBC: walls do not interact with walls */
-            const double dx = ldx[lk[j]], dz = ldz[lk[j]], r2 = lr2[lk[j]];
-            const double F = vres_wendland_f(C->k, sqrt(r2));
+            Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i];
+            Q.vx[np] = P->vx[b], Q.vz[np] = P->vz[b], Q.mb[np] = P->mass[b];
+            Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
+            if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b ? visc_wall : visc_fluid;
+            if (shift && wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && P->type[b] == 2))) noshift = 1;
+            np += fluid_a || !wall_b;
+        }
+        /* 4: the pair terms. Where vres_sph_interact skips a term, a select of one of its
+           inputs makes it zero: a select of the term itself would have the compiler compute the
+           term in a branch (it may not compute, in every vector lane, a floating-point operation
+           that could trap and that the program does not always ask for), and the loop would not
+           be vectorised. */
+#pragma omp simd
+        for (int j = 0; j < np; j++) {
+            const double dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j], mb = Q.mb[j], rhob = Q.rhob[j];
+            const double F = vres_wendland_f(k, sqrt(r2));
             const double frx = F * dx, frz = F * dz;
-            const double dvx = vxa - P->vx[b], dvz = vza - P->vz[b];
-            const double mb = P->mass[b], rhob = P->rho[b], inv_r2eta = 1.0 / (r2 + C->eta2);
-            arp += mb * (dvx * frx + dvz * frz);
-            if (!fluid_a) {
-                double rate = (dx * dvx + dz * dvz) * inv_r2eta;
-                vmax = rate > vmax ? rate : vmax;
-                continue;
-            }
-            const double inv_rhob = P->inv_rho[b];
-            /* vres_sph_pair_pressure */
-            const double prs = mb * (pa + P->press[b]) * inv_rhoa * inv_rhob;
-            accx -= prs * frx;
-            accz -= prs * frz;
+            const double dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j];
+            const double inv_r2eta = 1.0 / (r2 + eta2), inv_rhob = Q.inv_rhob[j];
+            T.arp[j] = mb * (dvx * frx + dvz * frz);
             const double dot = dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
+            T.rate[j] = dot_rr2;
+            const double prs = mb * (pa + Q.pb[j]) * inv_rhoa * inv_rhob; /* vres_sph_pair_pressure */
+            T.px[j] = prs * frx;
+            T.pz[j] = prs * frz;
             if (viscosity == VRES_VISC_LAMINAR) { /* vres_sph_pair_laminar */
-                const double xf = dx * frx + dz * frz;
-                const double vt = mb * 4.0 * (wall_b ? C->nu_wall : C->nu) * xf * inv_r2eta / (rhoa + rhob);
-                accx += vt * dvx;
-                accz += vt * dvz;
-            } else { /* vres_sph_pair_visc, as a select rather than a branch */
-                double pi = -(wall_b ? C->alpha_wall : C->alpha) * C->cs0 * C->h * dot_rr2 / (0.5 * (rhoa + rhob)) * mb;
-                pi = dot < 0 ? pi : 0.0;
-                accx -= pi * frx;
-                accz -= pi * frz;
+                const double nu = walls ? Q.visc[j] : visc_fluid;
+                const double vt = mb * 4.0 * nu * (dx * frx + dz * frz) * inv_r2eta / (rhoa + rhob);
+                T.vx[j] = vt * dvx;
+                T.vz[j] = vt * dvz;
+            } else { /* vres_sph_pair_visc: zero for a separating pair (dot >= 0) */
+                const double app_rr2 = dot < 0 ? dot_rr2 : 0.0;
+                const double alpha = walls ? Q.visc[j] : visc_fluid;
+                const double pi = -alpha * C->cs0 * C->h * app_rr2 / (0.5 * (rhoa + rhob)) * mb;
+                T.vx[j] = pi * frx;
+                T.vz[j] = pi * frz;
             }
-            vmax = dot_rr2 > vmax ? dot_rr2 : vmax;
-            if (ddt != VRES_DDT_NONE && !wall_b) { /* vres_sph_pair_ddt */
+            if (ddt != VRES_DDT_NONE) { /* vres_sph_pair_ddt, fluid-fluid pairs only */
                 double drho = rhoa - rhob;
                 if (ddt == VRES_DDT_FOURTAKAS) {
                     double x = -C->rho0_over_B * (C->g[0] * dx + C->g[2] * dz), e = C->inv_gamma;
-                    drho += C->rho0 * x * e * (1.0 + x * (e - 1.0) / 2.0 * (1.0 + x * (e - 2.0) / 3.0));
+                    drho += C->rho0 * x * e * (1.0 + x * ((e - 1.0) / 2.0) * (1.0 + x * ((e - 2.0) / 3.0)));
                 }
-                diff += C->ddt_khc * drho * F * r2 * inv_r2eta * mb * inv_rhob;
+                const double mf = walls && Q.wall[j] != 0 ? 0.0 : mb;
+                T.diff[j] = C->ddt_khc * drho * F * r2 * inv_r2eta * mf * inv_rhob;
             }
             if (shift) {
-                double vol = mb * inv_rhob;
-                if (wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && P->type[b] == 2))) noshift = 1;
-                gcx += vol * frx;
-                gcz += vol * frz;
-                divr -= vol * (dx * frx + dz * frz);
+                const double vol = mb * inv_rhob;
+                T.gx[j] = vol * frx;
+                T.gz[j] = vol * frz;
+                T.div[j] = vol * (dx * frx + dz * frz);
             }
         }
+        /* 5: the sums, in pair order (a wall particle a sums only its density rate) */
+        for (int j = 0; j < np; j++) {
+            arp += T.arp[j];
+            vmax = T.rate[j] > vmax ? T.rate[j] : vmax;
+        }
+        if (fluid_a)
+            for (int j = 0; j < np; j++) {
+                accx -= T.px[j];
+                accz -= T.pz[j];
+                if (viscosity == VRES_VISC_LAMINAR) {
+                    accx += T.vx[j];
+                    accz += T.vz[j];
+                } else {
+                    accx -= T.vx[j];
+                    accz -= T.vz[j];
+                }
+                if (ddt != VRES_DDT_NONE) diff += T.diff[j];
+                if (shift) {
+                    gcx += T.gx[j];
+                    gcz += T.gz[j];
+                    divr -= T.div[j];
+                }
+            }
     }
     if (shift && fluid_a) {
         shiftv[4 * a] = noshift ? NAN : gcx;
@@ -510,11 +592,22 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vr
     }
 #endif
 
+/* VRES_SPH_CLONES: with GCC on x86-64, a per-cell 2D function is compiled twice, for AVX2 (four
+ * doubles per vector instruction) and for the baseline (SSE2: two), and the loader picks the one
+ * the processor runs. The vector loops of vres_sph_interact2d then do twice the pairs per
+ * instruction. Both give the same bits: AVX2 has the same IEEE operations, and the clone leaves
+ * FMA off, so no multiply and add are fused into one rounding. */
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__) && defined(__x86_64__)
+#define VRES_SPH_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define VRES_SPH_CLONES
+#endif
+
 /* VRES_SPH_VARIANT2D(name, ddt, walls, visc, shift) defines name_one (one cell, options fixed)
  * and its loops name_cpu / name_cuda over cells 0..ncells (n = g->ncells + 1); shiftv is
  * written only by the shifting variants (NULL for the others). */
 #define VRES_SPH_VARIANT2D(name, ddt, walls, viscosity, shift)                                                    \
-    VRES_HD static inline void name##_one(size_t cell, const vres_cells *g, const vres_sph_2d *P,                 \
+    VRES_HD VRES_SPH_CLONES static inline void name##_one(size_t cell, const vres_cells *g, const vres_sph_2d *P, \
                                           const vres_sph_consts *C, double *ace, double *ar, double *visc,        \
                                           double *shiftv)                                                         \
     {                                                                                                             \
@@ -541,7 +634,7 @@ VRES_SPH_VARIANTS2D(vres_sph2d_shift_laminar_, VRES_VISC_LAMINAR, 1)    /* vres_
 
 /* The general 2D loop: every option read at run time (a benchmarking aid that shows what the
  * specialised variants save; vres-run uses it with VRES_LOOP=general). */
-VRES_HD static inline void vres_sph2d_general_one(size_t cell, const vres_cells *g, const vres_sph_2d *P,
+VRES_HD VRES_SPH_CLONES static inline void vres_sph2d_general_one(size_t cell, const vres_cells *g, const vres_sph_2d *P,
                                                   const vres_sph_consts *C, double *ace, double *ar, double *visc,
                                                   double *shiftv, int ddt, int walls, int viscosity, int shift)
 {

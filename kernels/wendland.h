@@ -6,7 +6,9 @@
  * the gradient is written as grad_a W_ab = F(r) (x_a - x_b) with F = (dW/dr)/r =
  * -5 alpha (1 - q/2)^3 / h^2: finite at r = 0 and free of a division by r (DualSPHysics'
  * form). The constants depend only on h and the dimension, so a domain computes them once
- * (vres_wendland_make) and passes the small struct by value to its interaction loops. */
+ * (vres_wendland_make) and passes the small struct by value to its interaction loops.
+ * The functions below have no branch (1 - q/2 is clamped at 0 by a select) and no division,
+ * so that the interaction's vector loops can call them. */
 #ifndef VRES_KERNELS_WENDLAND_H
 #define VRES_KERNELS_WENDLAND_H
 
@@ -20,6 +22,7 @@ typedef struct vres_wendland {
     double h;     /* smoothing length (m); the support radius is 2h */
     double alpha; /* normalisation alpha_d (m^-dim) */
     double fgrad; /* -5 alpha / h^2: F(0), the gradient factor's scale (m^-(dim+2)) */
+    double inv_h; /* 1/h (m^-1): q = r/h by a product */
 } vres_wendland;
 
 /* Smoothing length (m) from the particle spacing dp (m): h = coefh sqrt(dim) dp, the
@@ -36,33 +39,35 @@ VRES_HD static inline vres_wendland vres_wendland_make(int dim, double h)
     k.h = h;
     k.alpha = dim == 2 ? 7.0 / (4.0 * VRES_WENDLAND_PI * h * h) : 21.0 / (16.0 * VRES_WENDLAND_PI * h * h * h);
     k.fgrad = -5.0 * k.alpha / (h * h);
+    k.inv_h = 1.0 / h;
     return k;
 }
 
-/* W(r) (m^-dim) at distance r >= 0 (m); exactly 0 for r >= 2h. */
+/* 1 - q/2 for q = r/h (r >= 0, m), clamped at 0 (so from r = 2h on every function below is 0). */
+VRES_HD static inline double vres_wendland_t(vres_wendland k, double r)
+{
+    double t = 1.0 - 0.5 * (r * k.inv_h);
+    return t > 0.0 ? t : 0.0;
+}
+
+/* W(r) (m^-dim) at distance r >= 0 (m); 0 for r >= 2h. */
 VRES_HD static inline double vres_wendland_w(vres_wendland k, double r)
 {
-    double q = r / k.h;
-    if (q >= 2.0) return 0.0;
-    double t = 1.0 - 0.5 * q, t2 = t * t;
-    return k.alpha * t2 * t2 * (2.0 * q + 1.0);
+    double t = vres_wendland_t(k, r), t2 = t * t;
+    return k.alpha * t2 * t2 * (2.0 * (r * k.inv_h) + 1.0);
 }
 
 /* dW/dr (m^-(dim+1)) at distance r >= 0 (m); <= 0, and 0 at r = 0 and for r >= 2h. */
 VRES_HD static inline double vres_wendland_dwdr(vres_wendland k, double r)
 {
-    double q = r / k.h;
-    if (q >= 2.0) return 0.0;
-    double t = 1.0 - 0.5 * q;
-    return -5.0 * k.alpha * q * t * t * t / k.h;
+    double q = r * k.inv_h, t = vres_wendland_t(k, r);
+    return -5.0 * k.alpha * q * t * t * t * k.inv_h;
 }
 
 /* F(r) = (dW/dr)/r (m^-(dim+2)), so that grad_a W_ab = F(r_ab) (x_a - x_b); 0 for r >= 2h. */
 VRES_HD static inline double vres_wendland_f(vres_wendland k, double r)
 {
-    double q = r / k.h;
-    if (q >= 2.0) return 0.0;
-    double t = 1.0 - 0.5 * q;
+    double t = vres_wendland_t(k, r);
     return k.fgrad * t * t * t;
 }
 

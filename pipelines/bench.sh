@@ -1,82 +1,146 @@
 #!/usr/bin/env bash
 # pipelines/bench.sh - throughput benchmark of vres-run (make bench). Not a test: it prints
 # tables and asserts nothing. Each run generates its case once, runs a fixed number of steps
-# (about STEPS) and reads the solver's own particle-steps per second from run.tsv (which
-# excludes snapshot writing); each figure is the median of REPEATS runs, because a shared
-# machine makes single runs scatter. Peer figure (DESIGN section 8): DualSPHysics 5.4 on the
-# CPU, 2D dam break dp 0.01 (21,001 particles, 2 threads): 0.98 us per Symplectic
-# particle-step.
+# (about STEPS, to the end time --tmax that the start's time step gives) with one snapshot at
+# the end, and reads the solver's own figures from run.tsv, by column name: particle-steps
+# per second (particles x steps / wall seconds of stepping, snapshot writing excluded) and
+# interactions per second (ordered neighbour pairs within 2h x force evaluations per second:
+# two per Symplectic step). Each 2D figure is the median of REPEATS runs, because a shared
+# machine makes single runs scatter; the 3D row is one run of STEPS3D steps.
+# Peer figure (DESIGN section 8): DualSPHysics 5.4 on the CPU, 2D dam break dp 0.01 m
+# (21,001 particles, 2 threads): 0.98 us per Symplectic particle-step.
 #
-# Table 1: the 2D dam break at about 20k and 200k particles, 1 and 2 threads.
-# Table 2: the specialised interaction loop vres-run picks for a scene (only the modules the
+# Table 1: the 2D dam break (cases/dsph_dambreak2d) at about 20k and 200k particles, 1 and 2
+#   threads, Symplectic.
+# Table 2: the 3D dam break (cases/bench_dambreak3d) at about 1M particles, 2 threads, when
+#   the machine has MEM3D_GIB GiB available (BENCH3D=0 leaves it out).
+# Table 3: the specialised interaction loop vres-run picks for a scene (only the modules the
 #   scene uses compiled in) against the general loop (every option tested at run time,
 #   VRES_LOOP=general, see vres-run(1)) on the same scene and threads: the dam break (DBC
 #   walls, Fourtakas diffusion, artificial viscosity) and the Taylor-Green vortex (no walls,
 #   no diffusion, laminar viscosity, periodic).
-#   bash pipelines/bench.sh [OUTDIR]      (default build/bench)
+#
+#   bash pipelines/bench.sh [OUTDIR]      (default build/bench; the stores are kept there and
+#                                          reused, the run directories are replaced)
+# Environment: STEPS (60), REPEATS (3), STEPS3D (4), BENCH3D (1), MEM3D_GIB (1: the 3D run
+# holds about 0.3 GB) and VRES_BIN (the tools' directory, default bin/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-build/bench}
 mkdir -p "$out"
+BIN=${VRES_BIN:-bin}
 STEPS=${STEPS:-60}
 REPEATS=${REPEATS:-3}
+STEPS3D=${STEPS3D:-4}
+BENCH3D=${BENCH3D:-1}
+MEM3D_GIB=${MEM3D_GIB:-1}
 DB=cases/dsph_dambreak2d/dambreak2d_Def.xml
+DB3=cases/bench_dambreak3d/bench_dambreak3d_Def.xml
 TG=cases/taylor_green2d/taylor_green2d_Def.xml
 
-# gen NAME XML [vres-gencase options...]: the store $out/NAME.h5 (made once)
+# gen NAME XML [vres-gencase options...]: the store $out/NAME.h5, made again only when the
+# XML is newer or the options differ from those it was made with ($out/NAME.args)
 gen() {
     local name=$1 xml=$2
     shift 2
-    [ -f "$out/$name.h5" ] || bin/vres-gencase -q "$@" "$xml" -o "$out/$name.h5"
+    local args="$xml $*"
+    if [ ! -f "$out/$name.h5" ] || [ "$xml" -nt "$out/$name.h5" ] ||
+        [ "$(cat "$out/$name.args" 2>/dev/null)" != "$args" ]; then
+        "$BIN/vres-gencase" -q "$@" "$xml" -o "$out/$name.h5"
+        printf '%s\n' "$args" >"$out/$name.args"
+    fi
 }
 
 # particles STORE: its particle count
-particles() { bin/vres-info -t "$1" | awk '!/^#/ {n += $4} END {print n}'; }
+particles() { "$BIN/vres-info" -t "$1" | awk '!/^#/ {n += $4} END {print n}'; }
 
-# rate NAME TMAX THREADS LOOP: "steps wall_s particle_steps_per_s" of the median of REPEATS
-# runs of store NAME to TMAX (by particle-steps per second)
-rate() {
-    local name=$1 tmax=$2 th=$3 loop=$4 rd
-    for r in $(seq "$REPEATS"); do
-        rd=$out/run-$name-t$th-$loop-$r
-        rm -rf "$rd"
-        VRES_LOOP=$loop OMP_NUM_THREADS=$th bin/vres-run -q --threads "$th" --tmax "$tmax" --tout "$tmax" \
-            "$out/$name.h5" -o "$rd"
-        awk '!/^#/ {l = $0} END {split(l, f, "\t"); print f[2], f[10], f[11]}' "$rd/run.tsv"
-    done | sort -g -k3 | awk -v m="$(((REPEATS + 1) / 2))" 'NR == m'
+# param STORE NAME: a resolved parameter of the store (vres-info's parameter lines)
+param() { "$BIN/vres-info" "$1" | awk -v k="$2" '$1 == k {print $2; exit}'; }
+
+# tmax_for STORE NSTEPS: the end time of about NSTEPS steps, from the start's time step
+# dt = CFL h / c0 (the sound-speed bound, which decides dt while the fluid is slow)
+tmax_for() {
+    awk -v s="$2" -v cfl="$(param "$1" cflnumber)" -v h="$(param "$1" h)" -v c="$(param "$1" cs0)" \
+        'BEGIN {printf "%.6g", s * cfl * h / c}'
 }
 
-# tmax DP: the end time of about STEPS steps (dt ~ CFL h / c0, h = sqrt(2) dp, c0 88.37 m/s, CFL 0.2)
-tmax_for() { awk -v dp="$1" -v s="$STEPS" 'BEGIN {printf "%.6g", s * 0.2 * 1.41421 * dp / 88.37}'; }
+# figures RUNDIR: "steps particle_steps_per_s interactions_per_s pairs" from the last line of
+# RUNDIR/run.tsv, columns found by their header names ("-" for a column run.tsv lacks)
+figures() {
+    awk -F'\t' 'NR == 1 {sub(/^# */, ""); for (i = 1; i <= NF; i++) col[$i] = i; next}
+                !/^#/ {for (i = 1; i <= NF; i++) v[i] = $i}
+                function get(name) {return (name in col) ? v[col[name]] : "-"}
+                END {print get("step"), get("particle_steps_per_s"), get("interactions_per_s"), get("pairs")}' \
+        "$1/run.tsv"
+}
 
-printf '# vres-run throughput, Symplectic, about %s steps, median of %s runs; host: %s, %s cores\n' \
-    "$STEPS" "$REPEATS" "$(uname -m)" "$(nproc)"
-printf '# %s\n' "$(bin/vres-run --version)"
-printf '\n# 2D dam break (%s)\n' "$DB"
-printf 'case\tdp_m\tparticles\tthreads\tsteps\twall_s\tparticle_steps_per_s\tus_per_particle_step\n'
-for spec in "dambreak2d-20k 0.01" "dambreak2d-200k 0.00316"; do
+# rate NAME TMAX THREADS LOOP RUNS: figures (see above) of the median of RUNS runs of store
+# NAME to TMAX, by particle-steps per second
+rate() {
+    local name=$1 tmax=$2 th=$3 loop=$4 runs=$5 rd
+    for r in $(seq "$runs"); do
+        rd=$out/run-$name-t$th-$loop-$r
+        rm -rf "$rd"
+        VRES_LOOP=$loop OMP_NUM_THREADS=$th "$BIN/vres-run" -q --threads "$th" --tmax "$tmax" --tout "$tmax" \
+            "$out/$name.h5" -o "$rd"
+        figures "$rd"
+    done | sort -g -k2 | awk -v m="$(((runs + 1) / 2))" 'NR == m'
+}
+
+# row NAME DP N THREADS FIGURES...: one line of tables 1 and 2
+row() {
+    awk -v name="$1" -v dp="$2" -v n="$3" -v th="$4" -v steps="$5" -v ps="$6" -v is="$7" -v pairs="$8" 'BEGIN {
+        printf "%s\t%s\t%d\t%d\t%d\t%.4g\t%.3f\t", name, dp, n, th, steps, ps, (ps > 0 ? 1e6 / ps : 0)
+        if (is == "-" || pairs == "-") printf "-\t-\n"
+        else printf "%.4g\t%.1f\n", is, pairs / n }'
+}
+
+header='case\tdp_m\tparticles\tthreads\tsteps\tparticle_steps_per_s\tus_per_particle_step\tinteractions_per_s\tpairs_per_particle\n'
+printf '# vres-run throughput, Symplectic; host: %s, %s cores, %s\n' "$(uname -m)" "$(nproc)" \
+    "$(awk -F': ' '/^model name/ {print $2; exit}' /proc/cpuinfo)"
+printf '# %s\n' "$("$BIN/vres-run" --version)"
+printf '# peer: DualSPHysics 5.4 (CPU) on dambreak2d-20k at 2 threads: 0.98 us per particle-step\n'
+
+printf '\n# 2D dam break (%s), about %s steps, median of %s runs\n' "$DB" "$STEPS" "$REPEATS"
+printf "$header"
+for spec in "dambreak2d-20k 0.01" "dambreak2d-200k 0.0032"; do
     set -- $spec
     name=$1 dp=$2
     gen "$name" "$DB" --dp "$dp"
     n=$(particles "$out/$name.h5")
+    tmax=$(tmax_for "$out/$name.h5" "$STEPS")
     for th in 1 2; do
-        rate "$name" "$(tmax_for "$dp")" "$th" specialised | awk -v name="$name" -v dp="$dp" -v n="$n" -v th="$th" \
-            '{printf "%s\t%s\t%d\t%d\t%d\t%.2f\t%.4g\t%.3f\n", name, dp, n, th, $1, $2, $3, 1e6 / $3}'
+        f=$(rate "$name" "$tmax" "$th" specialised "$REPEATS")
+        row "$name" "$dp" "$n" "$th" $f
     done
 done
+
+printf '\n# 3D dam break (%s), about %s steps, one run\n' "$DB3" "$STEPS3D"
+avail=$(awk '/^MemAvailable:/ {printf "%d", $2 / 1048576}' /proc/meminfo)
+if [ "$BENCH3D" != 1 ]; then
+    printf '# left out (BENCH3D=%s)\n' "$BENCH3D"
+elif [ "$avail" -lt "$MEM3D_GIB" ]; then
+    printf '# left out: %s GiB of memory available, the run needs about %s\n' "$avail" "$MEM3D_GIB"
+else
+    printf "$header"
+    gen dambreak3d-1m "$DB3"
+    n=$(particles "$out/dambreak3d-1m.h5")
+    dp=$(param "$out/dambreak3d-1m.h5" dp)
+    tmax=$(tmax_for "$out/dambreak3d-1m.h5" "$STEPS3D")
+    th=$(($(nproc) < 2 ? 1 : 2))
+    f=$(rate dambreak3d-1m "$tmax" "$th" specialised 1)
+    row dambreak3d-1m "$dp" "$n" "$th" $f
+fi
 
 printf '\n# specialised loop (the scene'"'"'s modules only) against the general loop (VRES_LOOP=general)\n'
 printf 'case\tparticles\tthreads\tloop\tparticle_steps_per_s\tus_per_particle_step\tspeedup\n'
 gen tg2d "$TG" --dp 0.01
-# the Taylor-Green case at dp 0.01 m (10,000 particles): h = sqrt(2) dp, c0 10 m/s, CFL 0.2
-tg_tmax=$(awk -v s="$STEPS" 'BEGIN {printf "%.6g", s * 0.2 * 1.41421 * 0.01 / 10}')
-for spec in "dambreak2d-20k $(tmax_for 0.01)" "tg2d $tg_tmax"; do
-    set -- $spec
-    name=$1 tmax=$2
+for name in dambreak2d-20k tg2d; do
     n=$(particles "$out/$name.h5")
+    tmax=$(tmax_for "$out/$name.h5" "$STEPS")
     for th in 1 2; do
-        g=$(rate "$name" "$tmax" "$th" general | awk '{print $3}')
-        s=$(rate "$name" "$tmax" "$th" specialised | awk '{print $3}')
+        g=$(rate "$name" "$tmax" "$th" general "$REPEATS" | awk '{print $2}')
+        s=$(rate "$name" "$tmax" "$th" specialised "$REPEATS" | awk '{print $2}')
         awk -v name="$name" -v n="$n" -v th="$th" -v g="$g" -v s="$s" 'BEGIN {
             printf "%s\t%d\t%d\tgeneral\t%.4g\t%.3f\t\n", name, n, th, g, 1e6 / g
             printf "%s\t%d\t%d\tspecialised\t%.4g\t%.3f\t%.2f\n", name, n, th, s, 1e6 / s, s / g }'

@@ -20,9 +20,10 @@ INFO     := $(BIN)/vres-info
 VTK      := $(BIN)/vres-vtk
 DEMO     := demo
 
-# Case directories with a case file, and the case file of each.
+# Case directories with a case file, and the case file of each; benchmark scenes (bench_*, a
+# million particles) are left to make bench.
 CASE_XMLS := $(wildcard cases/*/*_Def.xml)
-NAMES     := $(sort $(notdir $(patsubst %/,%,$(dir $(CASE_XMLS)))))
+NAMES     := $(filter-out bench_%,$(sort $(notdir $(patsubst %/,%,$(dir $(CASE_XMLS))))))
 xml_of     = $(firstword $(wildcard cases/$(1)/$(1)_Def.xml) $(sort $(wildcard cases/$(1)/*_Def.xml)))
 
 STORES := $(foreach n,$(NAMES),$(DEMO)/$(n)/$(n).h5)
