@@ -189,6 +189,29 @@ VRES_HD static inline int vres_cells_rows2d(const vres_cells *g, int i, int k, v
     return m;
 }
 
+/* How many particles b != a lie within sqrt(r2max) (m) of particle a (images across periodic
+ * axes counted as they come), for positions pos [3n] in the cells' slot order: the count of
+ * ordered neighbour pairs that the interaction sees, from one side. */
+VRES_HD static inline size_t vres_cells_count_within(const vres_cells *g, const double *pos, size_t a, double r2max)
+{
+    vres_cell_range nb[27];
+    const double *pa = &pos[3 * a];
+    size_t total = 0;
+    int m = vres_cells_neighbours(g, pa, nb);
+    for (int k = 0; k < m; k++)
+        for (size_t j = nb[k].begin; j < nb[k].end; j++) {
+            if (j == a && !nb[k].shift[0] && !nb[k].shift[1] && !nb[k].shift[2]) continue;
+            double r2 = 0;
+            for (int q = 0; q < 3; q++) {
+                if (q == 1 && g->dim == 2) continue;
+                double dq = pa[q] - (pos[3 * j + q] + nb[k].shift[q]);
+                r2 += dq * dq;
+            }
+            total += r2 < r2max;
+        }
+    return total;
+}
+
 #ifdef __cplusplus
 }
 #endif

@@ -303,22 +303,7 @@ static size_t cpu_count_pairs(vres_backend *b)
     size_t total = 0;
     if (g->n != d->n) return 0;
 #pragma omp parallel for reduction(+ : total) schedule(dynamic, 256)
-    for (size_t a = 0; a < d->n; a++) {
-        vres_cell_range nb[27];
-        const double *pa = &d->pos[3 * a];
-        int m = vres_cells_neighbours(g, pa, nb);
-        for (int k = 0; k < m; k++)
-            for (size_t j = nb[k].begin; j < nb[k].end; j++) {
-                if (j == a && !nb[k].shift[0] && !nb[k].shift[1] && !nb[k].shift[2]) continue;
-                double r2 = 0;
-                for (int q = 0; q < 3; q++) {
-                    if (q == 1 && g->dim == 2) continue;
-                    double dq = pa[q] - (d->pos[3 * j + q] + nb[k].shift[q]);
-                    r2 += dq * dq;
-                }
-                total += r2 < r2max;
-            }
-    }
+    for (size_t a = 0; a < d->n; a++) total += vres_cells_count_within(g, d->pos, a, r2max);
     return total;
 }
 

@@ -270,22 +270,7 @@ VRES_PARTICLE_LOOP(check, check_one,
 VRES_HD static inline void pairs_one(size_t a, const vres_cells *g, const double *pos, double r2max,
                                      unsigned long long *cnt)
 {
-    vres_cell_range nb[27];
-    const double *pa = &pos[3 * a];
-    unsigned long long total = 0;
-    int m = vres_cells_neighbours(g, pa, nb);
-    for (int k = 0; k < m; k++)
-        for (size_t j = nb[k].begin; j < nb[k].end; j++) {
-            if (j == a && !nb[k].shift[0] && !nb[k].shift[1] && !nb[k].shift[2]) continue;
-            double r2 = 0;
-            for (int q = 0; q < 3; q++) {
-                if (q == 1 && g->dim == 2) continue;
-                double dq = pa[q] - (pos[3 * j + q] + nb[k].shift[q]);
-                r2 += dq * dq;
-            }
-            total += r2 < r2max;
-        }
-    cnt[a] = total;
+    cnt[a] = vres_cells_count_within(g, pos, a, r2max);
 }
 VRES_PARTICLE_LOOP(pairs, pairs_one, (const vres_cells *g, const double *pos, double r2max, unsigned long long *cnt),
                    (g, pos, r2max, cnt))
