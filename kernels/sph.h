@@ -21,6 +21,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "../lib/cells.h"
 #include "device.h"
@@ -64,6 +65,21 @@ typedef struct vres_sph_consts {
     int shift_mode;     /* Shifting 1: a wall neighbour cancels a particle's shifting, 2: a fixed
                            one does, 3: walls count like fluid (used by the shifting variants only) */
 } vres_sph_consts;
+
+/* The kernel part of the constants for dimension dim and smoothing length h (m): k, h, the
+ * support (2h)^2, eta2 = 0.01 h^2 and the speed of sound cs0 (m/s); every other field zero,
+ * for the caller to set (the solver's run configuration, vres-forces' pair terms). */
+static inline vres_sph_consts vres_sph_consts_make(int dim, double h, double cs0)
+{
+    vres_sph_consts C;
+    memset(&C, 0, sizeof C);
+    C.k = vres_wendland_make(dim, h);
+    C.h = h;
+    C.fourh2 = 4.0 * h * h;
+    C.eta2 = 0.01 * h * h;
+    C.cs0 = cs0;
+    return C;
+}
 
 /* Pressure force of b on a, added to acc (m/s^2): -m_b (p_a + p_b)/(rho_a rho_b) F x_ab.
  * mb kg, pa pb Pa, inv_rhoa inv_rhob 1/density (m^3/kg: reciprocals, so that a pair costs no

@@ -219,13 +219,7 @@ static size_t particle_force(const vres_domain *d, size_t i, const fluid_set *f,
 /* The kernel and viscosity constants of domain d (the fields the pair terms read). */
 static vres_sph_consts domain_consts(const vres_domain *d, const force_cfg *c)
 {
-    vres_sph_consts C;
-    memset(&C, 0, sizeof C);
-    C.k = vres_wendland_make(c->dim, d->h);
-    C.h = d->h;
-    C.fourh2 = 4.0 * d->h * d->h;
-    C.eta2 = 0.01 * d->h * d->h;
-    C.cs0 = c->cs0;
+    vres_sph_consts C = vres_sph_consts_make(c->dim, d->h, c->cs0);
     C.alpha_wall = c->visco_kind == VRES_VISC_ARTIFICIAL ? c->visco_wall : 0;
     C.nu_wall = c->visco_kind == VRES_VISC_LAMINAR ? c->visco_wall : 0;
     return C;

@@ -333,13 +333,7 @@ static void cpu_close(vres_backend *b)
 
 vres_sph_consts vres_run_consts(const run_cfg *c)
 {
-    vres_sph_consts C;
-    memset(&C, 0, sizeof C);
-    C.k = vres_wendland_make(c->dim, c->h);
-    C.h = c->h;
-    C.fourh2 = 4.0 * c->h * c->h;
-    C.eta2 = 0.01 * c->h * c->h;
-    C.cs0 = c->cs0;
+    vres_sph_consts C = vres_sph_consts_make(c->dim, c->h, c->cs0);
     int lam = c->visco_kind == VRES_VISC_LAMINAR;
     C.alpha = lam ? 0 : c->visco;
     C.alpha_wall = lam ? 0 : c->visco * c->visco_bound;

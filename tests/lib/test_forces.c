@@ -272,13 +272,7 @@ static void check_against_solver(int laminar)
     ck_assert_int_eq(vres_cells_init(&g, 2, 2 * d->h, lo, hi, NULL), 0);
     vres_cells_build(&g, d->pos, d->n);
     ck_assert_int_eq(vres_cells_reorder(&g, d), 0);
-    vres_sph_consts C;
-    memset(&C, 0, sizeof C);
-    C.k = vres_wendland_make(2, d->h);
-    C.h = d->h;
-    C.fourh2 = 4 * d->h * d->h;
-    C.eta2 = 0.01 * d->h * d->h;
-    C.cs0 = 20;
+    vres_sph_consts C = vres_sph_consts_make(2, d->h, 20);
     C.alpha = laminar ? 0 : 0.05;
     C.alpha_wall = laminar ? 0 : 0.05 * 1.7;
     C.nu = laminar ? 1e-3 : 0;

@@ -105,9 +105,7 @@ static void scene_make(scene *S, int dim, int nax, int ncols, int nrows, const f
     vres_cells_gather(&S->cells, S->type, sizeof(uint8_t));
     vres_cells_gather(&S->cells, S->normal, 3 * sizeof(float));
     vres_cells_gather(&S->cells, S->mvel, 3 * sizeof(float));
-    S->C.k = vres_wendland_make(dim, h);
-    S->C.h = h;
-    S->C.fourh2 = 4 * h * h;
+    S->C = vres_sph_consts_make(dim, h, 0); /* mDBC reads the kernel and rho0 only */
     S->C.rho0 = rho0;
 }
 

@@ -30,13 +30,8 @@
 /* Constants like a 2D water case: dp 0.01 m, h = sqrt(2) dp, c0 40 m/s, alpha 0.01, delta 0.1. */
 static vres_sph_consts consts(void)
 {
-    vres_sph_consts C;
     double h = sqrt(2.0) * 0.01, c0 = 40, rho0 = 1000, gamma = 7;
-    C.k = vres_wendland_make(2, h);
-    C.h = h;
-    C.fourh2 = 4 * h * h;
-    C.eta2 = 0.01 * h * h;
-    C.cs0 = c0;
+    vres_sph_consts C = vres_sph_consts_make(2, h, c0);
     C.alpha = 0.01;
     C.alpha_wall = 0.01;
     C.ddt_khc = 2 * h * 0.1 * c0;
