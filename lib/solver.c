@@ -488,6 +488,18 @@ static void progress(const run_cfg *c, const run_clock *clk, double t0, double t
     shown = 1;
 }
 
+/* Write the store's state (host copy, at time t, step) as DIR/snap_last_good.h5 and say where.
+ * Returns VRES_RUN_UNSTABLE, or VRES_RUN_FAIL when the write fails. */
+static int write_last_good(vres_store *s, const run_cfg *c, const run_resume *r, const char *dir, double t, long step)
+{
+    char *path = vres_xasprintf("%s/snap_last_good.h5", dir);
+    int rc = write_snapshot(s, c, r, path, t, step);
+    if (!rc)
+        vres_error("last good state (step %ld, t = %.6g s) written to %s; it restarts with --restart", step, t, path);
+    free(path);
+    return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
+}
+
 /* Stop after a blow-up: diagnose slot bad (the state after the failed step), put the step-start
  * state (the last good one) back, write it as snap_last_good.h5 and say where. Returns
  * VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
@@ -498,13 +510,7 @@ static int stop_unstable(vres_store *s, vres_backend *b, const run_cfg *c, const
     if (bad != (size_t)-1 && b->download(b, d) == 0) diagnose(d, c, bad, step, t);
     b->restore_start(b);
     if (b->download(b, d) != 0) return VRES_RUN_FAIL;
-    char *path = vres_xasprintf("%s/snap_last_good.h5", dir);
-    int rc = write_snapshot(s, c, r, path, t0, step0);
-    if (!rc)
-        vres_error("last good state (step %ld, t = %.6g s) written to %s; it restarts with --restart", step0, t0,
-                   path);
-    free(path);
-    return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
+    return write_last_good(s, c, r, dir, t0, step0);
 }
 
 /* The moving bodies' transforms at time t (s) relative to their placement at t_start, into mv:
@@ -611,11 +617,7 @@ static int after_step(vres_store *s, vres_backend *b, const run_cfg *c, run_resu
             vres_error("unstable at step %ld, t = %.6g s: %zu fluid particles left, below MinFluidStop=%g of the %.0f "
                        "at the start (%.0f excluded)", step, t, nf, c->min_fluid, r->nfluid0, r->nexcluded);
             /* the state after the exclusions is sound: it is the last good one */
-            char *path = vres_xasprintf("%s/snap_last_good.h5", f->dir);
-            int rc = write_snapshot(s, c, r, path, t, step);
-            if (!rc) vres_error("last good state (step %ld, t = %.6g s) written to %s", step, t, path);
-            free(path);
-            return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
+            return write_last_good(s, c, r, f->dir, t, step);
         }
     }
     if (bad != (size_t)-1) return stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
