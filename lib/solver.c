@@ -542,25 +542,19 @@ static size_t exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_
 {
     vres_domain *d = &s->dom[0];
     if (b->download(b, d) != 0) return (size_t)-2;
-    double *xref = c->nmoving ? vres_xmalloc(3 * d->n * sizeof *xref) : NULL;
-    if (xref) b->get_xref(b, xref);
-    if (!f->excl) {
+    for (size_t i = 0; i < d->n; i++) /* a wall outside stops the run: find it before changing anything */
+        if (d->type[i] != VRES_FLUID && !in_box(c, &d->pos[3 * i])) return i;
+    if (!f->excl) { /* appended to, after a restart's earlier lines */
         char *path = vres_xasprintf("%s/excluded.tsv", f->dir);
         f->excl = fopen(path, "a");
-        if (f->excl && ftell(f->excl) == 0)
-            fprintf(f->excl, "# time_s\tstep\tid\ttype\tmk\tx_m\ty_m\tz_m\tvx_m_s\tvy_m_s\tvz_m_s\trho_kg_m3\treason\n");
         if (!f->excl) vres_error("%s: cannot write: %s", path, strerror(errno));
         free(path);
-        if (!f->excl) {
-            free(xref);
-            return (size_t)-2;
-        }
+        if (!f->excl) return (size_t)-2;
+        if (fseek(f->excl, 0, SEEK_END) == 0 && ftell(f->excl) == 0)
+            fprintf(f->excl, "# time_s\tstep\tid\ttype\tmk\tx_m\ty_m\tz_m\tvx_m_s\tvy_m_s\tvz_m_s\trho_kg_m3\treason\n");
     }
-    for (size_t i = 0; i < d->n; i++) /* a wall outside stops the run: find it before changing anything */
-        if (d->type[i] != VRES_FLUID && !in_box(c, &d->pos[3 * i])) {
-            free(xref);
-            return i;
-        }
+    double *xref = c->nmoving ? vres_xmalloc(3 * d->n * sizeof *xref) : NULL;
+    if (xref) b->get_xref(b, xref);
     size_t k = 0, nex = 0;
     char ids[96] = "";
     for (size_t i = 0; i < d->n; i++) {

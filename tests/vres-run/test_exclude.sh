@@ -32,3 +32,11 @@ expect_err 3 'fluid particles left, below MinFluidStop=0.5 of the 200 at the sta
     "MinFluidStop=0.5: stops when fewer than 100 are left" "$RUN" --tmax 1 --tout 0.1 "$T/half.h5" -o "$T/half"
 left=$(values /Domains/D0/Type "$T/half/snap_last_good.h5" | awk '$1 == 0' | wc -l)
 check "its last good state holds the fluid left (under 100, got $left)" [ "$left" -lt 100 -a "$left" -gt 0 ]
+
+# a restart in the same directory trims excluded.tsv to its steps and appends after them: one
+# header, each of the 200 particles once
+expect_err 3 '0 fluid particles left' "restart from snap_00003.h5 excludes the rest again" \
+    "$RUN" --threads 2 --restart "$T/run/snap_00003.h5"
+check "excluded.tsv after the restart: one header line" [ "$(grep -c '^#' "$T/run/excluded.tsv")" -eq 1 ]
+check "excluded.tsv after the restart: 200 distinct ids" \
+    [ "$(grep -v '^#' "$T/run/excluded.tsv" | cut -f3 | sort -u | wc -l)" -eq 200 -a "$(grep -c -v '^#' "$T/run/excluded.tsv")" -eq 200 ]
