@@ -1,0 +1,301 @@
+/* interp_liu.h - the buffer interpolation of the variable-resolution coupling (DESIGN 5):
+ * density and velocity at a point x_a from the coupled (donor) domain's ordinary fluid, by the
+ * first-order corrected kernel in Liu's form, with Shepard's fallback and the support tests the
+ * mass flux needs, all in one neighbour pass. Written once for the CPU and CUDA (device.h).
+ *
+ * The system. With d_b = x_b - x_a (x, z in 2D; x, y, z in 3D), V_b = m_b / rho_b, W_b and
+ * grad_a W_b = F(r_b) (x_a - x_b) = -F d_b (wendland.h, F = (dW/dr)/r < 0), a field linear
+ * around x_a, f_b = f + g . d_b, tested against W_b and grad_a W_b and summed over the donors,
+ * gives (dim+1) equations for [f; g]:
+ *
+ *   A [f; g] = r,   A = sum_b V_b [W_b; grad_a W_b] [1, d_b^T],   r = sum_b V_b f_b [W_b; grad_a W_b].
+ *
+ * f = first component of A^-1 r is exact for every linear field whatever the arrangement of
+ * the donors (jittered, variable masses and densities, a support cut by a free surface or a
+ * wall), as the system holds identically for them; Shepard's sum V W f / sum V W is exact only
+ * for a constant field. Donors are the donor domain's particles of type VRES_FLUID (0) only:
+ * not its buffer (which is itself interpolated), walls or inlets; their h, kernel and masses
+ * are the donor's (the caller passes the donor's kernel).
+ *
+ * Scaling, derived. The blocks of A carry different powers of length: row 0 is [1, m], the
+ * gradient rows [1/m, 1]. With S = diag(1, h, .., h), A = S^-1 Ah S where
+ *
+ *   Ah = sum_b V_b [W_b; h grad_a W_b] [1, d_b^T / h]
+ *
+ * is dimensionless and unchanged when every length (positions, dp, h) is scaled by the same
+ * factor and the masses with its dim-th power: it depends on the arrangement in units of h
+ * only. vres builds Ah (test row h grad W, column d/h), solves Ah [f; h g] = S r (same f), and
+ * takes kappa = ||Ah||_inf ||Ah^-1||_inf as the condition number: resolution independent by
+ * construction. DualSPHysics 5.4 instead computes ||A||_inf ||A^-1||_inf of the unscaled A and
+ * multiplies by h^2. Since A_0j = h Ah_0j, A_i0 = Ah_i0 / h (i, j >= 1; the same for A^-1 =
+ * S^-1 Ah^-1 S), h ||A||_inf = max(h |Ah_00| + h^2 sum_j |Ah_0j|, max_i (|Ah_i0| + h sum_j |Ah_ij|)),
+ * a mixture of powers of h (h in metres) that no single factor removes. Where the support is
+ * symmetric (sum V grad W = 0 and sum V W d = 0) Ah is block diagonal, A = Ah, and the reference
+ * measure is h^2 kappa: 1e-4 kappa at h = 1 cm, so it would keep the correction up to kappa ~ 1e6;
+ * where the support is one-sided (a free surface) and h << 1 m it tends instead to
+ * max_i |Ah_i0| max_i |(Ah^-1)_i0|; it equals kappa only at h = 1 m, and exceeds it beyond (a
+ * coastal case at h = 10 m would always fall back to Shepard). pipelines/reports/
+ * interp_compare.txt tabulates both. vres applies the threshold (VRES_LIU_COND_MAX = 100,
+ * DualSPHysics' default value) to kappa.
+ *
+ * Measured kappa (Wendland C2, h = sqrt(dim) dp, tests/lib/test_interp.c): 1.01..1.06 in the
+ * bulk of a regular lattice, up to 2.4 (3.7 with masses varying by +-50%) jittered by
+ * 0.25 dp; at a flat free surface 5.7 (2D) / 7.0 (3D) on the top row and 27 / 22 half a spacing
+ * above it (up to 55 jittered); it passes 100 at 1 dp (2D) / 1.25 dp (3D) above the top row,
+ * where the Shepard sum is still 0.24 / 0.20; a single row or layer of particles is singular.
+ * So the threshold only catches degenerate, very one-sided supports.
+ *
+ * The solve is Gauss-Jordan elimination with partial pivoting, the pivot sought afresh in each
+ * column (the reference's LU keeps the running maximum of earlier columns, so it may not pivot
+ * where it should); it gives Ah^-1 whole, hence the exact infinity norm of the inverse.
+ *
+ * Fallbacks (DualSPHysics 5.4 defaults). The Shepard sum c = sum_b V_b W_b (= Ah_00) is the
+ * fraction of the support holding donor fluid: ~1 inside, ~1/2 at a flat surface. c <= 0.05
+ * (VRES_LIU_SHEPARD_MIN) is too little support: the point is flagged VRES_LIU_NOSUPPORT (a
+ * buffer particle is deleted, an interface point accumulates no mass) and its fields are NaN.
+ * Otherwise kappa > 100 (or a zero pivot) gives Shepard's value, else the corrected one.
+ *
+ * The mass-flux gate's quantities come from the same pass: the kernel-support divergence
+ *   D = sum_b V_b d_b . grad_a W_b = -sum_b V_b F(r_b) r_b^2   (the SPH divergence of x, = dim
+ *       in a full support, ~dim/2 at a flat free surface)
+ * over donor fluid (V = m/rho) and donor walls (types FIXED, MOVING, FLOATING; V = m / rho0),
+ * and the distance to the nearest donor fluid particle. vres_liu_flux_gate applies DualSPHysics'
+ * rule: flux only where D > 1.5 (2D) / 2.75 (3D) or a donor fluid particle is nearer than the
+ * smaller of the two spacings. Measured D (test_interp.c, regular lattice): 1.985..2.010 (2D) /
+ * 2.993..3.004 (3D) in the bulk, 1.26 / 1.93 on the top row of a flat free surface, 1.004 /
+ * 1.502 half a spacing above it (the fluid body's surface: half the bulk value).
+ */
+#ifndef VRES_KERNELS_INTERP_LIU_H
+#define VRES_KERNELS_INTERP_LIU_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../lib/cells.h"
+#include "device.h"
+#include "wendland.h"
+
+#define VRES_LIU_COND_MAX 100.0   /* largest kappa = cond_inf(Ah) for the correction (DualSPHysics' VResThreshold) */
+#define VRES_LIU_SHEPARD_MIN 0.05 /* Shepard sum at or below which the support is too small (DualSPHysics' cut-off) */
+#define VRES_LIU_DIV_GATE_2D 1.5  /* D above which an interface point's support counts as full, 2D */
+#define VRES_LIU_DIV_GATE_3D 2.75 /* the same in 3D */
+
+/* How a point's values were obtained (vres_liu_result.method). */
+#define VRES_LIU_NOSUPPORT 0 /* Shepard sum <= shepard_min: fields NaN; delete the buffer particle, no flux */
+#define VRES_LIU_CORRECTED 1 /* first-order corrected kernel (Liu) */
+#define VRES_LIU_SHEPARD 2   /* Shepard fallback: kappa > cond_max, singular matrix, or cond_max <= 0 */
+
+/* The settings of one donor domain. */
+typedef struct vres_liu_opts {
+    vres_wendland k;     /* the donor domain's kernel (its h) */
+    double rho0;         /* reference density (kg/m^3): wall volumes are m_b / rho0 in D */
+    double cond_max;     /* largest kappa for the correction; <= 0: Shepard only (VRES_LIU_COND_MAX) */
+    double shepard_min;  /* Shepard sum at or below which there is too little support (VRES_LIU_SHEPARD_MIN) */
+} vres_liu_opts;
+
+/* What one point gets. */
+typedef struct vres_liu_result {
+    double rho;      /* density (kg/m^3); NaN with VRES_LIU_NOSUPPORT */
+    double v[3];     /* velocity (m/s), all three components (2D donors carry v_y, normally 0); NaN with NOSUPPORT */
+    double shepard;  /* Shepard sum sum_b V_b W_b over donor fluid (dimensionless) */
+    double cond;     /* kappa = ||Ah||_inf ||Ah^-1||_inf (dimensionless); INFINITY when singular, NaN when not
+                        computed (NOSUPPORT) */
+    double div;      /* D = -sum_b V_b F r^2 over donor fluid and walls (dimensionless) */
+    double dmin;     /* distance to the nearest donor fluid particle within 2h (m); INFINITY when none */
+    int method;      /* VRES_LIU_CORRECTED, VRES_LIU_SHEPARD or VRES_LIU_NOSUPPORT */
+    int nfluid;      /* donor fluid particles inside the support */
+} vres_liu_result;
+
+/* The sums of one point over its donors. Matrix indices 0..dim are [1, x, (y,) z]. */
+typedef struct vres_liu_acc {
+    double a[4][4];  /* Ah = sum V [W; h grad_a W][1, d/h] (dimensionless); a[0][0] is the Shepard sum */
+    double r[4][4];  /* r[q][i]: field q (rho, vx, vy, vz) times test row i, summed (the field's unit) */
+    double div;      /* D so far (dimensionless) */
+    double d2min;    /* squared distance to the nearest donor fluid so far (m^2) */
+    int nfluid;      /* donor fluid particles added */
+} vres_liu_acc;
+
+/* The default settings for a donor with kernel k and reference density rho0 (kg/m^3). */
+VRES_HD static inline vres_liu_opts vres_liu_defaults(vres_wendland k, double rho0)
+{
+    vres_liu_opts o;
+    o.k = k;
+    o.rho0 = rho0;
+    o.cond_max = VRES_LIU_COND_MAX;
+    o.shepard_min = VRES_LIU_SHEPARD_MIN;
+    return o;
+}
+
+/* Empty sums. */
+VRES_HD static inline void vres_liu_acc_zero(vres_liu_acc *s)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) s->a[i][j] = s->r[i][j] = 0;
+    s->div = 0;
+    s->d2min = INFINITY;
+    s->nfluid = 0;
+}
+
+/* Accumulate into s the donors of x (m) in the cells g (slot order): positions (m), velocities
+ * (m/s), densities (kg/m^3), masses (kg) and types (store.h) of the donor domain. Fluid enters
+ * everything, walls only D; buffer and inlet particles nothing. 2D ignores y (x-z plane). */
+VRES_HD static inline void vres_liu_gather(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o, const double *pos,
+                                           const float *vel, const float *rho, const double *mass,
+                                           const uint8_t *type, const double x[3])
+{
+    vres_cell_range nb[27];
+    const int m = vres_cells_neighbours(g, x, nb), dim = g->dim, n = dim + 1;
+    const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h;
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            const int t = type[b], fluid = t == 0, wall = t >= 2 && t <= 4; /* VRES_FLUID; FIXED..FLOATING */
+            if (!fluid && !wall) continue;
+            double d[3];
+            for (int ax = 0; ax < 3; ax++) d[ax] = pos[3 * b + ax] + nb[c].shift[ax] - x[ax];
+            if (dim == 2) d[1] = 0;
+            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (r2 >= fourh2) continue;
+            const double r = sqrt(r2), negf = -vres_wendland_f(o.k, r); /* -F >= 0 */
+            if (wall) {
+                s->div += mass[b] / o.rho0 * negf * r2;
+                continue;
+            }
+            const double vb = mass[b] / rho[b];
+            s->div += vb * negf * r2;
+            s->d2min = r2 < s->d2min ? r2 : s->d2min;
+            s->nfluid++;
+            /* column e = [1, d/h]; test row tr = V [W, h grad_a W] = V [W, -F h^2 (d/h)] */
+            const double e[4] = {1.0, d[0] * inv_h, (dim == 2 ? d[2] : d[1]) * inv_h, d[2] * inv_h};
+            const double vg = vb * negf * h2;
+            double tr[4];
+            tr[0] = vb * vres_wendland_w(o.k, r);
+            for (int i = 1; i < n; i++) tr[i] = vg * e[i];
+            const double f[4] = {rho[b], vel[3 * b], vel[3 * b + 1], vel[3 * b + 2]};
+            for (int i = 0; i < n; i++) {
+                for (int j = 0; j < n; j++) s->a[i][j] += tr[i] * e[j];
+                for (int q = 0; q < 4; q++) s->r[q][i] += f[q] * tr[i];
+            }
+        }
+}
+
+/* Invert the n x n matrix a (n <= 4; a is destroyed) into inv by Gauss-Jordan elimination with
+ * partial pivoting, the largest |entry| of each column at or below the diagonal taken afresh.
+ * Returns 0, or -1 when a pivot is zero or not finite (singular: inv is then unspecified). */
+VRES_HD static inline int vres_liu_invert(int n, double a[4][4], double inv[4][4])
+{
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) inv[i][j] = i == j;
+    for (int c = 0; c < n; c++) {
+        int p = c;
+        for (int r = c + 1; r < n; r++)
+            if (fabs(a[r][c]) > fabs(a[p][c])) p = r;
+        const double piv = a[p][c];
+        if (!(fabs(piv) > 0) || !isfinite(piv)) return -1;
+        if (p != c)
+            for (int j = 0; j < n; j++) {
+                double t = a[c][j];
+                a[c][j] = a[p][j], a[p][j] = t;
+                t = inv[c][j];
+                inv[c][j] = inv[p][j], inv[p][j] = t;
+            }
+        const double ip = 1.0 / piv;
+        for (int j = 0; j < n; j++) a[c][j] *= ip, inv[c][j] *= ip;
+        for (int r = 0; r < n; r++) {
+            if (r == c || a[r][c] == 0) continue;
+            const double fr = a[r][c];
+            for (int j = 0; j < n; j++) a[r][j] -= fr * a[c][j], inv[r][j] -= fr * inv[c][j];
+        }
+    }
+    return 0;
+}
+
+/* The infinity norm (largest row sum of |entries|) of the n x n matrix a. */
+VRES_HD static inline double vres_liu_norm_inf(int n, const double a[4][4])
+{
+    double best = 0;
+    for (int i = 0; i < n; i++) {
+        double s = 0;
+        for (int j = 0; j < n; j++) s += fabs(a[i][j]);
+        best = s > best ? s : best;
+    }
+    return best;
+}
+
+/* The result for the sums s of dimension dim under the settings o: the too-little-support
+ * flag, the condition number, the corrected value or Shepard's, D and the nearest distance. */
+VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int dim, vres_liu_opts o)
+{
+    vres_liu_result res;
+    const int n = dim + 1;
+    const double shep = s->a[0][0];
+    res.shepard = shep;
+    res.div = s->div;
+    res.dmin = sqrt(s->d2min);
+    res.nfluid = s->nfluid;
+    res.cond = NAN;
+    if (!(shep > o.shepard_min)) { /* NaN too */
+        res.method = VRES_LIU_NOSUPPORT;
+        res.rho = res.v[0] = res.v[1] = res.v[2] = NAN;
+        return res;
+    }
+    double a[4][4], inv[4][4];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) a[i][j] = s->a[i][j];
+    const double na = vres_liu_norm_inf(n, a);
+    res.cond = vres_liu_invert(n, a, inv) == 0 ? na * vres_liu_norm_inf(n, inv) : INFINITY;
+    double f[4];
+    if (o.cond_max > 0 && res.cond <= o.cond_max) {
+        res.method = VRES_LIU_CORRECTED;
+        for (int q = 0; q < 4; q++) { /* first row of Ah^-1 against the scaled right side */
+            double v = 0;
+            for (int j = 0; j < n; j++) v += inv[0][j] * s->r[q][j];
+            f[q] = v;
+        }
+    } else {
+        res.method = VRES_LIU_SHEPARD;
+        for (int q = 0; q < 4; q++) f[q] = s->r[q][0] / shep;
+    }
+    res.rho = f[0];
+    res.v[0] = f[1], res.v[1] = f[2], res.v[2] = f[3];
+    return res;
+}
+
+/* Density, velocity, method and gate quantities at x (m) from the donor domain (cells g in
+ * slot order, arrays as vres_liu_gather) under the settings o. A point outside the donor's
+ * cell box has no donors: VRES_LIU_NOSUPPORT. */
+VRES_HD static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_opts o, const double *pos,
+                                                  const float *vel, const float *rho, const double *mass,
+                                                  const uint8_t *type, const double x[3])
+{
+    vres_liu_acc s;
+    vres_liu_acc_zero(&s);
+    vres_liu_gather(&s, g, o, pos, vel, rho, mass, type, x);
+    return vres_liu_solve(&s, g->dim, o);
+}
+
+/* 1 where an interface point with result r may accumulate mass (DualSPHysics 5.4's rule): it has
+ * support (not NOSUPPORT), and D exceeds the dimension's gate or the nearest donor fluid
+ * particle is closer than dp_min (m, the smaller of the receiving and donor spacings). */
+VRES_HD static inline int vres_liu_flux_gate(const vres_liu_result *r, int dim, double dp_min)
+{
+    const double gate = dim == 2 ? VRES_LIU_DIV_GATE_2D : VRES_LIU_DIV_GATE_3D;
+    return r->method != VRES_LIU_NOSUPPORT && (r->div > gate || r->dmin < dp_min);
+}
+
+/* Per point: vres_liu_at at pts[3i..3i+2] (m) into out[i]. */
+VRES_HD static inline void vres_liu_one(size_t i, const vres_cells *g, vres_liu_opts o, const double *pos,
+                                        const float *vel, const float *rho, const double *mass, const uint8_t *type,
+                                        const double *pts, vres_liu_result *out)
+{
+    out[i] = vres_liu_at(g, o, pos, vel, rho, mass, type, &pts[3 * i]);
+}
+
+/* vres_liu_loop_cpu / vres_liu_loop_cuda (n, ...): vres_liu_one over n points (device pointers
+ * for the CUDA one: g a device copy of the cells, with device begin). */
+VRES_PARTICLE_LOOP(vres_liu_loop, vres_liu_one,
+                   (const vres_cells *g, vres_liu_opts o, const double *pos, const float *vel, const float *rho,
+                    const double *mass, const uint8_t *type, const double *pts, vres_liu_result *out),
+                   (g, o, pos, vel, rho, mass, type, pts, out))
+
+#endif
