@@ -12,8 +12,8 @@
  * linear in x is reproduced exactly, whatever the particle arrangement, including a support
  * cut by a free surface, where the plain Shepard value sum V W f / sum V W is biased by the
  * one-sided neighbourhood (the Shepard value is only zeroth-order consistent: exact for a
- * constant field). This is the corrected-kernel form DESIGN section 5 uses for buffers, in
- * its symmetric (kernel-weighted least-squares) variant.
+ * constant field). It is the symmetric (kernel-weighted least-squares, MLS) relative of the
+ * corrected kernel in Liu's form that DESIGN section 5 uses for buffers (kernels/interp_liu.h).
  *
  * The offsets are divided by h so that M is dimensionless and its conditioning means the same
  * at every resolution. M is symmetric positive semi-definite; its eigenvalues come from a
@@ -28,6 +28,21 @@
  * The "colour" c(x) = sum_b V_b W_b (the Shepard denominator) is the fraction of the support
  * that holds fluid: about 1 inside, 1/2 on the free surface, 0 outside. Below colour_min
  * (VRES_INTERP_COLOUR_MIN = 0.3) the point counts as outside the fluid and every field is NaN.
+ *
+ * MLS here against Liu's form (kernels/interp_liu.h, test functions [W, grad W], used by the
+ * variable-resolution coupling), measured on the same lattices (pipelines/reports/
+ * interp_compare.txt, made by build/tests/test_interp --compare; errors of a quadratic field in
+ * f'' h^2, 2D / 3D):
+ *   - linear fields: both exact to rounding wherever they correct (bulk, jittered lattices with
+ *     masses varying by +-50%, free surface, wall corner, two-row layers);
+ *   - quadratic fields, full support: the same (0.84 / 1.07, the kernel's own smoothing);
+ *   - on the top row of a free surface Liu is a little better (0.21 / 0.43 against 0.25 / 0.49),
+ *     beyond it MLS (dp/2 above: 0.45 / 0.006 against 0.53 / 0.16; on a corner's wall faces
+ *     1.33 / 0.72 against 1.40 / 0.95);
+ *   - MLS keeps the correction slightly farther out (2D, 1 dp above the top row: 12 of 20
+ *     points corrected, Liu none).
+ * Probes and gauges look at and just above the surface, so vres-probe keeps this form; the
+ * coupling uses Liu's, DESIGN 5's and DualSPHysics' choice for buffers.
  */
 #ifndef VRES_KERNELS_INTERP_H
 #define VRES_KERNELS_INTERP_H
