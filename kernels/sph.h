@@ -10,8 +10,8 @@
  * and they do not move). Time integration is DualSPHysics' Symplectic predictor-corrector.
  *
  * Everything here takes a particle index and plain arrays (no store structures), so the same
- * function runs in an OpenMP loop (lib/solver.c) and, later, in a CUDA kernel. The pair
- * functions (vres_sph_pair_*) are the physics of one interaction and are unit-tested on their
+ * function runs in an OpenMP loop (lib/solver_cpu.c) and in a CUDA kernel (lib/solver_cuda.cu).
+ * The pair functions (vres_sph_pair_*) are the physics of one interaction and are unit-tested on their
  * own (tests/lib/test_solver.c). Physics a scene does not use is compiled away: the interaction
  * takes its options (density diffusion kind, walls present) as arguments that the variants at
  * the end of this file fix to constants, so each variant is its own specialised loop. */
