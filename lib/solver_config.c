@@ -105,7 +105,7 @@ static int check_bodies(const vres_store *s)
     }
     const vres_domain *d = &s->dom[0];
     for (size_t i = 0; i < d->n; i++)
-        if (d->type[i] == VRES_MOVING && body_of(s, d->mk[i]) < 0) {
+        if (vres_type_is_moving(d->type[i]) && body_of(s, d->mk[i]) < 0) {
             vres_error("moving wall particle id %llu has mkbound %d, which no <motion> body moves",
                        (unsigned long long)d->id[i], d->mk[i]);
             return -1;
@@ -177,7 +177,7 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     }
     if (c->mdbc) {
         for (size_t i = 0; i < d->n; i++)
-            if (d->type[i] != VRES_FLUID && d->normal &&
+            if (vres_type_is_wall(d->type[i]) && d->normal &&
                 (d->normal[3 * i] != 0 || d->normal[3 * i + 1] != 0 || d->normal[3 * i + 2] != 0))
                 c->nnormal++;
         if (!c->nnormal)

@@ -151,7 +151,7 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
 #pragma omp parallel for reduction(max : amax2, vmax) schedule(static)
     for (size_t i = 0; i < d->n; i++) {
         if (visc[i] > vmax) vmax = visc[i];
-        if (type[i] != VRES_FLUID) continue;
+        if (!vres_type_is_fluid(type[i])) continue; /* walls have none, buffers' are discarded */
         double a2 = ace[3 * i] * ace[3 * i] + ace[3 * i + 1] * ace[3 * i + 1] + ace[3 * i + 2] * ace[3 * i + 2];
         if (a2 > amax2) amax2 = a2;
     }
@@ -219,7 +219,7 @@ static void cpu_move_walls(vres_backend *b, const vres_motion_state *mv)
     const double *xr = x->xref;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < d->n; i++) {
-        if (d->type[i] != VRES_MOVING) continue;
+        if (!vres_type_is_moving(d->type[i])) continue;
         const vres_motion_state *m = &mv[body_of(s, d->mk[i])];
         double *p = &d->pos[3 * i], r[3];
         for (int a = 0; a < 3; a++)
@@ -253,7 +253,7 @@ static size_t cpu_check(vres_backend *b, size_t *nout)
         const double *p = &d->pos[3 * i];
         int ok = isfinite(d->rho[i]) && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
         for (int k = 0; k < 3; k++) ok = ok && isfinite(d->vel[3 * i + k]);
-        if (ok && check_rho && d->type[i] == VRES_FLUID) ok = d->rho[i] >= c->rhop_min && d->rho[i] <= c->rhop_max;
+        if (ok && check_rho && vres_type_is_fluid(d->type[i])) ok = d->rho[i] >= c->rhop_min && d->rho[i] <= c->rhop_max;
         int ijk[3];
         if (ok && !vres_cells_locate(&x->cells, p, ijk)) out++;
         if (!ok && i < first) first = i;

@@ -190,11 +190,12 @@ VRES_PARTICLE_LOOP(split2d, split2d_one,
                     double *inv_rho),
                    (np, pos, vel, rho, x2d, v2d, inv_rho))
 
-/* |a|^2 of a fluid particle, 0 for the others (the CPU's reduction skips them). */
+/* |a|^2 of a fluid particle, 0 for the others (the CPU's reduction skips them: walls have none,
+ * buffers' are discarded). */
 VRES_HD static inline void accel2_one(size_t i, const uint8_t *type, const double *ace, double *a2)
 {
     const double *a = &ace[3 * i];
-    a2[i] = type[i] == VRES_FLUID ? a[0] * a[0] + a[1] * a[1] + a[2] * a[2] : 0.0;
+    a2[i] = vres_type_is_fluid(type[i]) ? a[0] * a[0] + a[1] * a[1] + a[2] * a[2] : 0.0;
 }
 VRES_PARTICLE_LOOP(accel2, accel2_one, (const uint8_t *type, const double *ace, double *a2), (type, ace, a2))
 
@@ -212,7 +213,7 @@ VRES_HD static inline void move_wall_one(size_t i, const uint8_t *type, const in
                                          double *pos, float *vel, float *mvel, const vres_motion_state *mv,
                                          const wall_body *body, size_t nb)
 {
-    if (type[i] != VRES_MOVING) return;
+    if (!vres_type_is_moving(type[i])) return;
     size_t k = 0;
     while (k < nb && !(body[k].moving && body[k].mkbound == mk[i])) k++;
     if (k == nb) return; /* the solver refused such a particle at its start */
@@ -256,7 +257,7 @@ __device__ static inline void check_one(size_t i, const vres_cells *g, const dou
     const double *p = &pos[3 * i];
     int good = isfinite(rho[i]) && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
     for (int k = 0; k < 3; k++) good = good && isfinite(vel[3 * i + k]);
-    if (good && check_rho && type[i] == VRES_FLUID) good = rho[i] >= rmin && rho[i] <= rmax;
+    if (good && check_rho && vres_type_is_fluid(type[i])) good = rho[i] >= rmin && rho[i] <= rmax;
     int ijk[3];
     if (good && !vres_cells_locate(g, p, ijk)) atomicAdd(&res[1], 1ULL);
     if (!good) atomicMin(&res[0], (unsigned long long)i);

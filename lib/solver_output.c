@@ -70,7 +70,7 @@ static out_stats stats(const vres_domain *d)
     size_t nf = 0;
 #pragma omp parallel for reduction(+ : m, nf) reduction(max : v2, hi) reduction(min : lo) schedule(static)
     for (size_t i = 0; i < d->n; i++) {
-        if (d->type[i] != VRES_FLUID) continue;
+        if (!vres_type_is_fluid(d->type[i])) continue;
         nf++;
         m += d->mass_p[i];
         const float *v = &d->vel[3 * i];
@@ -201,7 +201,7 @@ static size_t exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_
     vres_domain *d = &s->dom[0];
     if (b->download(b, d) != 0) return (size_t)-2;
     for (size_t i = 0; i < d->n; i++) /* a wall outside stops the run: find it before changing anything */
-        if (d->type[i] != VRES_FLUID && !vres_run_in_box(c, &d->pos[3 * i])) return i;
+        if (!vres_type_acts_fluid(d->type[i]) && !vres_run_in_box(c, &d->pos[3 * i])) return i;
     if (!f->excl) { /* appended to, after a restart's earlier lines */
         char *path = vres_xasprintf("%s/excluded.tsv", f->dir);
         f->excl = fopen(path, "a");
