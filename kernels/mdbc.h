@@ -39,7 +39,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../lib/cells.h"
+#include "cells.h"
 #include "device.h"
 #include "ptype.h"
 #include "sph.h"

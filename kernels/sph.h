@@ -26,7 +26,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "../lib/cells.h"
+#include "cells.h"
 #include "device.h"
 #include "ptype.h"
 #include "wendland.h"

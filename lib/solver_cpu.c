@@ -134,7 +134,7 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
             vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
                                    c->ddt, c->nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(c, shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
+            pick_interaction2d(vres_run_pick(c), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
                                          x->shiftv);
     } else if (c->general)
         vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
@@ -348,6 +348,12 @@ vres_sph_consts vres_run_consts(const run_cfg *c)
     return C;
 }
 
+vres_sph_pick vres_run_pick(const run_cfg *c)
+{
+    vres_sph_pick p = {c->visco_kind, c->nwall > 0, c->ddt};
+    return p;
+}
+
 int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c)
 {
     cpu_ctx *x = vres_xcalloc(1, sizeof *x);
@@ -384,8 +390,8 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
         memcpy(x->xref, d->pos, 3 * n * sizeof *x->xref);
     }
     if (c->mdbc && c->slip >= 2) x->mvel = vres_xcalloc(3 * n + 1, sizeof *x->mvel);
-    x->interact = pick_interaction(c);
-    x->interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
+    x->interact = pick_interaction(vres_run_pick(c));
+    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c)) : NULL;
     memset(b, 0, sizeof *b);
     b->ctx = x;
     b->n = n;

@@ -416,7 +416,7 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
             vres_sph2d_general_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
                                     c->ddt, c->nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(c, shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc,
+            pick_interaction2d(vres_run_pick(c), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc,
                                          x->shiftv);
     } else if (c->general)
         vres_sph_general_cuda(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar,
@@ -721,8 +721,8 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
         cu_close(b);
         return -1;
     }
-    x->interact = pick_interaction(c);
-    x->interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
+    x->interact = pick_interaction(vres_run_pick(c));
+    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c)) : NULL;
     memset(b, 0, sizeof *b);
     b->ctx = x;
     b->n = d->n;

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "../kernels/sph.h"
+#include "../kernels/sph_pick.h"
 #include "solver_motion.h"
 #include "store.h"
 
@@ -114,6 +115,9 @@ typedef struct vres_backend {
 
 /* The kernel and physics constants of the interaction for configuration c. */
 vres_sph_consts vres_run_consts(const run_cfg *c);
+
+/* The options that pick configuration c's interaction variant (kernels/sph_pick.h). */
+vres_sph_pick vres_run_pick(const run_cfg *c);
 
 /* Open the CPU backend over domain d of store s (the store's own arrays: d must live until
  * close). Moving walls keep d's positions now as their reference. 0, or -1 after printing why. */
