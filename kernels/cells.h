@@ -1,7 +1,7 @@
 /* cells.h (kernels/) - the cell-linked list as the per-particle physics reads it, written once
- * for the CPU and CUDA (see device.h): the list's struct, a particle's cell, its neighbour
- * cells (with their periodic shifts), the 2D row ranges of a cell and the pair count. How a
- * list is built (the box, the sort by cell, the
+ * for the CPU and CUDA (see device.h): the list's struct, a particle's cell and its key (what
+ * both backends sort by), its neighbour cells (with their periodic shifts), the 2D row ranges
+ * of a cell, the pair count, and the periodic wrap of a position. How a list is built (the box, the sort by cell, the
  * gathers that make memory follow the cells) is the host's: lib/cells.h, which includes this.
  *
  * The box is cut into cells at least as wide as the search radius (2h for the Wendland kernel);
@@ -79,6 +79,33 @@ VRES_HD static inline int vres_cells_locate(const vres_cells *g, const double x[
     }
     return 1;
 }
+
+/* The sort key of position x (m): its cell's index (x fastest, then y, then z), or ncells when
+ * x lies outside the box (or has a NaN coordinate), so that those sort after every cell. */
+VRES_HD static inline size_t vres_cells_key(const vres_cells *g, const double x[3])
+{
+    int c[3];
+    if (!vres_cells_locate(g, x, c)) return g->ncells;
+    return ((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0];
+}
+
+/* Particle i's position pos[3i..3i+2] (m) mapped into [lo, hi) along the periodic axes: a
+ * particle that crossed the boundary re-enters on the other side; other axes are left alone. */
+VRES_HD static inline void vres_cells_wrap_one(size_t i, const vres_cells *g, double *pos)
+{
+    for (int a = 0; a < 3; a++) {
+        if (!g->periodic[a]) continue;
+        double lo = g->lo[a], hi = g->hi[a], L = g->period[a], u = pos[3 * i + a];
+        if (u >= lo && u < hi) continue; /* the usual case; NaN falls through and stays NaN */
+        u = lo + fmod(u - lo, L);
+        if (u < lo) u += L;
+        if (u >= hi) u = lo; /* -tiny + L rounds to L: that point is lo */
+        pos[3 * i + a] = u;
+    }
+}
+
+/* vres_cells_wrap_loop_cpu / _cuda (n, g, pos): vres_cells_wrap_one over n particles. */
+VRES_PARTICLE_LOOP(vres_cells_wrap_loop, vres_cells_wrap_one, (const vres_cells *g, double *pos), (g, pos))
 
 /* The non-empty cells among the 3^dim around position x (m), with their periodic shifts, into
  * r[0..27). Returns how many; 0 when x is outside the box. Every particle within the search

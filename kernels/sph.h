@@ -430,6 +430,31 @@ typedef struct vres_sph_2d {
     const uint8_t *type;   /* [n] particle types (kernels/ptype.h) */
 } vres_sph_2d;
 
+/* The 2D interaction's split arrays of particle i of n (vres_sph_2d): x then z positions into
+ * x2d [2n] (m), x then z velocities into v2d [2n] (m/s), and 1 / rho into inv_rho [n] (m^3/kg). */
+VRES_HD static inline void vres_sph_split2d_one(size_t i, size_t n, const double *pos, const float *vel,
+                                                const float *rho, double *x2d, float *v2d, double *inv_rho)
+{
+    x2d[i] = pos[3 * i], x2d[n + i] = pos[3 * i + 2];
+    v2d[i] = vel[3 * i], v2d[n + i] = vel[3 * i + 2];
+    inv_rho[i] = 1.0 / rho[i];
+}
+
+/* vres_sph_split2d_cpu / _cuda (n, np, pos, vel, rho, x2d, v2d, inv_rho): np is the count the
+ * arrays are split by (the n of vres_sph_split2d_one). */
+VRES_PARTICLE_LOOP(vres_sph_split2d, vres_sph_split2d_one,
+                   (size_t np, const double *pos, const float *vel, const float *rho, double *x2d, float *v2d,
+                    double *inv_rho),
+                   (np, pos, vel, rho, x2d, v2d, inv_rho))
+
+/* |a|^2 of particle i (m^2/s^4) for the time step: its acceleration's for a fluid particle,
+ * 0 for the others (walls have none, buffer particles' are discarded). */
+VRES_HD static inline double vres_sph_accel2(size_t i, const uint8_t *type, const double *ace)
+{
+    const double *a = &ace[3 * i];
+    return vres_type_is_fluid(type[i]) ? a[0] * a[0] + a[1] * a[1] + a[2] * a[2] : 0.0;
+}
+
 /* Candidates a 2D particle looks at per pass over its neighbour ranges (more are done in turns).
  * On a GPU each thread holds its pass's arrays in slow local memory, so its passes are short. */
 #ifdef __CUDA_ARCH__
@@ -759,5 +784,15 @@ VRES_PARTICLE_LOOP(vres_shift, vres_shift_one,
                    (const uint8_t *type, const float *vel, double *shiftv, double dt, double coef_h, double tfs,
                     int dim, double maxdist),
                    (type, vel, shiftv, dt, coef_h, tfs, dim, maxdist))
+
+/* Move particle i by its shifting displacement shiftv[4i..4i+2] (m; vres_shift_one made it zero
+ * for every particle but shifted fluid). */
+VRES_HD static inline void vres_shift_apply_one(size_t i, const double *shiftv, double *pos)
+{
+    for (int k = 0; k < 3; k++) pos[3 * i + k] += shiftv[4 * i + k];
+}
+
+/* vres_shift_apply_cpu / _cuda (n, shiftv, pos). */
+VRES_PARTICLE_LOOP(vres_shift_apply, vres_shift_apply_one, (const double *shiftv, double *pos), (shiftv, pos))
 
 #endif
