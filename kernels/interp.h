@@ -51,7 +51,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../lib/cells.h"
+#include "cells.h"
 #include "device.h"
 #include "wendland.h"
 

@@ -39,8 +39,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../lib/cells.h"
+#include "cells.h"
 #include "device.h"
+#include "ptype.h"
 #include "sph.h"
 #include "wendland.h"
 
@@ -104,8 +105,8 @@ VRES_HD static inline double vres_mdbc_solve(int n, double *A, double *b)
  * to the wall face: the density the wall takes (kg/m^3, extrapolated from the ghost back to
  * the wall particle) into *rho_w and, when vel is not NULL, the fluid velocity at the ghost
  * node (m/s; Shepard, or first order with vorder 1 where the density is) into vg. Arrays as
- * for vres_mdbc_one; reads fluid particles only. Returns a VRES_MDBC_* kind (EMPTY: *rho_w =
- * rho0, vg untouched). */
+ * for vres_mdbc_one; reads fluid (and buffer) particles only. Returns a VRES_MDBC_* kind
+ * (EMPTY: *rho_w = rho0, vg untouched). */
 VRES_HD static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const double *pos, const float *vel,
                                           const float *rho, const double *mass, const uint8_t *type,
                                           const float *nv, vres_sph_consts C, int dim, int vorder, double *rho_w,
@@ -123,7 +124,7 @@ VRES_HD static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const d
     int nc = vres_cells_neighbours(g, xg, nb);
     for (int c = 0; c < nc; c++)
         for (size_t b = nb[c].begin; b < nb[c].end; b++) {
-            if (type[b] != 0) continue; /* fluid only */
+            if (!vres_type_acts_fluid(type[b])) continue; /* fluid (and buffer) only */
             double dx[3] = {xg[0] - (pos[3 * b] + nb[c].shift[0]), xg[1] - (pos[3 * b + 1] + nb[c].shift[1]),
                             xg[2] - (pos[3 * b + 2] + nb[c].shift[2])};
             double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
@@ -160,8 +161,8 @@ VRES_HD static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const d
     return first ? VRES_MDBC_FIRST : VRES_MDBC_SHEPARD;
 }
 
-/* The mDBC density of wall particle a (kg/m^3) into rho[a]; fluid particles and walls without
- * a normal are left alone (SlipMode 1: the velocity is not touched). Arrays in cell order as
+/* The mDBC density of wall particle a (kg/m^3) into rho[a]; fluid and buffer particles and
+ * walls without a normal are left alone (SlipMode 1: the velocity is not touched). Arrays in cell order as
  * for vres_sph_interact; normal is the store's [3n] wall normals, dim 2 (x-z plane) or 3.
  * Reads only fluid densities and writes only wall ones, so it may run over all particles at
  * once. */
@@ -169,7 +170,7 @@ VRES_HD static inline void vres_mdbc_one(size_t a, const vres_cells *g, const do
                                          const double *mass, const uint8_t *type, const float *normal,
                                          vres_sph_consts C, int dim)
 {
-    if (type[a] == 0) return;
+    if (!vres_type_is_wall(type[a])) return;
     const float *nv = &normal[3 * a];
     if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) return;
     double r, vg[3];
@@ -197,7 +198,7 @@ VRES_HD static inline void vres_mdbc_slip_one(size_t a, const vres_cells *g, con
                                               const float *normal, const float *mvel, vres_sph_consts C, int dim,
                                               int slip, int vorder)
 {
-    if (type[a] == 0) return;
+    if (!vres_type_is_wall(type[a])) return;
     const float *nv = &normal[3 * a];
     const double vm[3] = {mvel ? mvel[3 * a] : 0.0, mvel ? mvel[3 * a + 1] : 0.0, mvel ? mvel[3 * a + 2] : 0.0};
     float *va = &vel[3 * a];

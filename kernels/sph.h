@@ -8,10 +8,13 @@
  * artificial viscosity Pi_ab or laminar viscosity (Lo & Shao 2002, as DualSPHysics) and walls as DBC (dynamic boundary particles: they carry density
  * from the continuity equation over their fluid neighbours, their pressure comes from the EOS,
  * and they do not move). Time integration is DualSPHysics' Symplectic predictor-corrector.
+ * Buffer particles (variable resolution, kernels/ptype.h) are fluid neighbours of the fluid and
+ * the walls; their own rates are zero (the coupling interpolates their velocity and density)
+ * and the steps only advect them with their current velocity.
  *
  * Everything here takes a particle index and plain arrays (no store structures), so the same
- * function runs in an OpenMP loop (lib/solver.c) and, later, in a CUDA kernel. The pair
- * functions (vres_sph_pair_*) are the physics of one interaction and are unit-tested on their
+ * function runs in an OpenMP loop (lib/solver_cpu.c) and in a CUDA kernel (lib/solver_cuda.cu).
+ * The pair functions (vres_sph_pair_*) are the physics of one interaction and are unit-tested on their
  * own (tests/lib/test_solver.c). Physics a scene does not use is compiled away: the interaction
  * takes its options (density diffusion kind, walls present) as arguments that the variants at
  * the end of this file fix to constants, so each variant is its own specialised loop. */
@@ -23,8 +26,9 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "../lib/cells.h"
+#include "cells.h"
 #include "device.h"
+#include "ptype.h"
 #include "wendland.h"
 
 /* Forces inlining of the generic interaction into each variant, so that its constant options
@@ -154,10 +158,23 @@ VRES_HD static inline double vres_sph_pair_ddt(const vres_sph_consts *C, int fou
     return C->ddt_khc * drho * F * r2 * inv_r2eta * mb * inv_rhob;
 }
 
+/* The rates of buffer particle a, which the interaction does not compute: its momentum and
+ * continuity rates are discarded (the coupling sets its velocity and density), so ace, ar,
+ * visc and, with shift, the shifting sums of a are zero. */
+VRES_HD static inline void vres_sph_no_rates(size_t a, double *ace, double *ar, double *visc, const int shift,
+                                             double *shiftv)
+{
+    ace[3 * a] = ace[3 * a + 1] = ace[3 * a + 2] = 0.0;
+    ar[a] = 0.0;
+    visc[a] = 0.0;
+    if (shift) shiftv[4 * a] = shiftv[4 * a + 1] = shiftv[4 * a + 2] = shiftv[4 * a + 3] = 0.0;
+}
+
 /* The interaction of particle a with its neighbours in the cells g: for a fluid particle the
  * acceleration ace[3a] (m/s^2, gravity included), density rate ar[a] (kg/m^3/s) and the
- * largest viscous rate visc[a] (1/s); for a wall particle (DBC) ar[a] from its fluid
- * neighbours only, ace zero. Positions, velocities, densities, pressures, masses and types
+ * largest viscous rate visc[a] (1/s); for a wall particle (DBC) ar[a] from its fluid (and
+ * buffer) neighbours only, ace zero; for a buffer particle all three zero (its state is the
+ * coupling's), while it enters its neighbours' sums as fluid (vres_type_acts_fluid). Positions, velocities, densities, pressures, masses and types
  * are the domain's arrays in cell order (slot s of g is particle s). ddt is a VRES_DDT_*
  * kind, walls 1 when the domain has wall particles, visc a VRES_VISC_* kind; the variants
  * below fix all three. shift 1 (the shifting variants) also sums, for each fluid particle, the
@@ -171,7 +188,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                                              double *visc, const int ddt, const int walls, const int viscosity,
                                              const int shift, double *shiftv)
 {
-    const int fluid_a = !walls || type[a] == 0; /* 0: VRES_FLUID (store.h) */
+    if (vres_type_is_buffer(type[a])) {
+        vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
+        return;
+    }
+    const int fluid_a = !walls || vres_type_is_fluid(type[a]);
     const double xa[3] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
     const double va[3] = {vel[3 * a], vel[3 * a + 1], vel[3 * a + 2]};
     const double rhoa = rho[a], inv_rhoa = 1.0 / rhoa, pa = press[a];
@@ -181,7 +202,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
     int m = vres_cells_neighbours(g, xa, nb);
     for (int c = 0; c < m; c++)
         for (size_t b = nb[c].begin; b < nb[c].end; b++) {
-            const int wall_b = walls && type[b] != 0;
+            const int wall_b = walls && !vres_type_acts_fluid(type[b]);
             if (!fluid_a && wall_b) continue; /* DBC: walls do not interact with walls */
             double dx[3] = {xa[0] - (pos[3 * b] + nb[c].shift[0]), xa[1] - (pos[3 * b + 1] + nb[c].shift[1]),
                             xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
@@ -208,7 +229,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                 diff += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob, dx, r2, inv_r2eta, F);
             if (shift) {
                 double vol = mb * inv_rhob;
-                if (wall_b && (C.shift_mode == 1 || (C.shift_mode == 2 && type[b] == 2))) noshift = 1; /* 2: VRES_FIXED */
+                if (wall_b && (C.shift_mode == 1 || (C.shift_mode == 2 && vres_type_is_fixed(type[b])))) noshift = 1;
                 gc[0] += vol * fr[0];
                 gc[1] += vol * fr[1];
                 gc[2] += vol * fr[2];
@@ -228,16 +249,30 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
     ace[3 * a + 2] = fluid_a ? acc[2] + C.g[2] : 0.0;
 }
 
+/* A buffer particle i advected over time tau (s) from pos0 with its current velocity, which the
+ * coupling sets (its velocity and density are left alone: the steps discard its rates). */
+VRES_HD static inline void vres_sph_advect_buffer(size_t i, const double *pos0, const float *vel, double *pos,
+                                                  double tau)
+{
+    for (int k = 0; k < 3; k++) pos[3 * i + k] = pos0[3 * i + k] + tau * vel[3 * i + k];
+}
+
 /* Symplectic predictor (half step dt/2) of particle i from the state at the step's start
  * (pos0, vel0, rho0) and the rates at it: fluid moves with its old velocity, velocity and
  * density advance by half a step; walls only update their density, kept >= rhop0 so that
- * walls never pull fluid in (DualSPHysics' ComputeSymplecticPre). dt in s. */
+ * walls never pull fluid in (DualSPHysics' ComputeSymplecticPre); buffer particles move by
+ * dt/2 with their current velocity. dt in s. */
 VRES_HD static inline void vres_sph_predict_one(size_t i, const uint8_t *type, const double *pos0, const float *vel0,
                                                 const float *rho0, const double *ace, const double *ar, double *pos,
                                                 float *vel, float *rho, double dt, double rhop0)
 {
-    double dt05 = 0.5 * dt, r = rho0[i] + dt05 * ar[i];
-    if (type[i] != 0) {
+    double dt05 = 0.5 * dt;
+    if (vres_type_is_buffer(type[i])) {
+        vres_sph_advect_buffer(i, pos0, vel, pos, dt05);
+        return;
+    }
+    double r = rho0[i] + dt05 * ar[i];
+    if (!vres_type_is_fluid(type[i])) {
         rho[i] = (float)(r < rhop0 ? rhop0 : r);
         return;
     }
@@ -251,13 +286,18 @@ VRES_HD static inline void vres_sph_predict_one(size_t i, const uint8_t *type, c
 /* Symplectic corrector of particle i with the rates at the predicted state: density by
  * rho0 (2 - eps)/(2 + eps), eps = -(drho/dt)/rho_pred dt, velocity by the full step,
  * position from the mean of the old and new velocities (DualSPHysics' ComputeSymplecticCorr);
- * walls only update their density, kept >= rhop0. rho holds the predicted density on entry. */
+ * walls only update their density, kept >= rhop0; buffer particles move by dt from the step's
+ * start with their current velocity. rho holds the predicted density on entry. */
 VRES_HD static inline void vres_sph_correct_one(size_t i, const uint8_t *type, const double *pos0, const float *vel0,
                                                 const float *rho0, const double *ace, const double *ar, double *pos,
                                                 float *vel, float *rho, double dt, double rhop0)
 {
+    if (vres_type_is_buffer(type[i])) {
+        vres_sph_advect_buffer(i, pos0, vel, pos, dt);
+        return;
+    }
     double eps = -ar[i] / rho[i] * dt, r = rho0[i] * (2.0 - eps) / (2.0 + eps);
-    if (type[i] != 0) {
+    if (!vres_type_is_fluid(type[i])) {
         rho[i] = (float)(r < rhop0 ? rhop0 : r);
         return;
     }
@@ -274,15 +314,22 @@ VRES_HD static inline void vres_sph_correct_one(size_t i, const uint8_t *type, c
  * v^(n+1) = v^(n-1) + 2 dt a^n from the previous step's values velm1, rhom1, or, on an Euler
  * step (euler 1, every VerletSteps steps, which keeps the two interleaved sequences together),
  * by v^(n+1) = v^n + dt a^n. The current values then become the previous ones. Walls only
- * update their density, kept >= rhop0. */
+ * update their density, kept >= rhop0; buffer particles move by v dt with their current
+ * velocity, which with their density is also the previous step's. */
 VRES_HD static inline void vres_sph_verlet_one(size_t i, const uint8_t *type, double *pos, float *vel, float *rho,
                                                float *velm1, float *rhom1, const double *ace, const double *ar,
                                                double dt, int euler, double rhop0)
 {
+    if (vres_type_is_buffer(type[i])) {
+        vres_sph_advect_buffer(i, pos, vel, pos, dt);
+        for (int k = 0; k < 3; k++) velm1[3 * i + k] = vel[3 * i + k];
+        rhom1[i] = rho[i];
+        return;
+    }
     double dt2 = euler ? dt : 2.0 * dt;
     double r = (euler ? rho[i] : rhom1[i]) + dt2 * ar[i];
     rhom1[i] = rho[i];
-    if (type[i] != 0) {
+    if (!vres_type_is_fluid(type[i])) {
         rho[i] = (float)(r < rhop0 ? rhop0 : r);
         return;
     }
@@ -380,8 +427,33 @@ typedef struct vres_sph_2d {
     const float *press;    /* [n] pressures (Pa) */
     const double *inv_rho; /* [n] 1/rho, exactly 1.0 / (double)rho (m^3/kg) */
     const double *mass;    /* [n] masses (kg) */
-    const uint8_t *type;   /* [n] particle types (store.h; 0 fluid) */
+    const uint8_t *type;   /* [n] particle types (kernels/ptype.h) */
 } vres_sph_2d;
+
+/* The 2D interaction's split arrays of particle i of n (vres_sph_2d): x then z positions into
+ * x2d [2n] (m), x then z velocities into v2d [2n] (m/s), and 1 / rho into inv_rho [n] (m^3/kg). */
+VRES_HD static inline void vres_sph_split2d_one(size_t i, size_t n, const double *pos, const float *vel,
+                                                const float *rho, double *x2d, float *v2d, double *inv_rho)
+{
+    x2d[i] = pos[3 * i], x2d[n + i] = pos[3 * i + 2];
+    v2d[i] = vel[3 * i], v2d[n + i] = vel[3 * i + 2];
+    inv_rho[i] = 1.0 / rho[i];
+}
+
+/* vres_sph_split2d_cpu / _cuda (n, np, pos, vel, rho, x2d, v2d, inv_rho): np is the count the
+ * arrays are split by (the n of vres_sph_split2d_one). */
+VRES_PARTICLE_LOOP(vres_sph_split2d, vres_sph_split2d_one,
+                   (size_t np, const double *pos, const float *vel, const float *rho, double *x2d, float *v2d,
+                    double *inv_rho),
+                   (np, pos, vel, rho, x2d, v2d, inv_rho))
+
+/* |a|^2 of particle i (m^2/s^4) for the time step: its acceleration's for a fluid particle,
+ * 0 for the others (walls have none, buffer particles' are discarded). */
+VRES_HD static inline double vres_sph_accel2(size_t i, const uint8_t *type, const double *ace)
+{
+    const double *a = &ace[3 * i];
+    return vres_type_is_fluid(type[i]) ? a[0] * a[0] + a[1] * a[1] + a[2] * a[2] : 0.0;
+}
 
 /* Candidates a 2D particle looks at per pass over its neighbour ranges (more are done in turns).
  * On a GPU each thread holds its pass's arrays in slow local memory, so its passes are short. */
@@ -413,7 +485,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
                                                                double *shiftv, const int ddt, const int walls,
                                                                const int viscosity, const int shift)
 {
-    const int fluid_a = !walls || P->type[a] == 0;
+    if (vres_type_is_buffer(P->type[a])) {
+        vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
+        return;
+    }
+    const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);
     const double xa = P->x[a], za = P->z[a], vxa = P->vx[a], vza = P->vz[a];
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
     const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2;
@@ -486,12 +562,13 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
         for (int j = 0; j < nkept; j++) {
             const int i = L.kept[j];
             const size_t b = L.b[i];
-            const int wall_b = walls && P->type[b] != 0;
+            const int wall_b = walls && !vres_type_acts_fluid(P->type[b]);
             Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i];
             Q.vx[np] = P->vx[b], Q.vz[np] = P->vz[b], Q.mb[np] = P->mass[b];
             Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
             if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b ? visc_wall : visc_fluid;
-            if (shift && wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && P->type[b] == 2))) noshift = 1;
+            if (shift && wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(P->type[b]))))
+                noshift = 1;
             np += fluid_a || !wall_b;
         }
         /* 4: the pair terms. Where vres_sph_interact skips a term, a select of one of its
@@ -689,7 +766,7 @@ VRES_HD static inline void vres_shift_one(size_t i, const uint8_t *type, const f
                                           double coef_h, double tfs, int dim, double maxdist)
 {
     double *s = &shiftv[4 * i];
-    if (type[i] != 0 || s[0] != s[0]) { /* walls; NaN: cancelled */
+    if (!vres_type_is_fluid(type[i]) || s[0] != s[0]) { /* walls and buffers; NaN: cancelled */
         s[0] = s[1] = s[2] = 0;
         return;
     }
@@ -707,5 +784,15 @@ VRES_PARTICLE_LOOP(vres_shift, vres_shift_one,
                    (const uint8_t *type, const float *vel, double *shiftv, double dt, double coef_h, double tfs,
                     int dim, double maxdist),
                    (type, vel, shiftv, dt, coef_h, tfs, dim, maxdist))
+
+/* Move particle i by its shifting displacement shiftv[4i..4i+2] (m; vres_shift_one made it zero
+ * for every particle but shifted fluid). */
+VRES_HD static inline void vres_shift_apply_one(size_t i, const double *shiftv, double *pos)
+{
+    for (int k = 0; k < 3; k++) pos[3 * i + k] += shiftv[4 * i + k];
+}
+
+/* vres_shift_apply_cpu / _cuda (n, shiftv, pos). */
+VRES_PARTICLE_LOOP(vres_shift_apply, vres_shift_apply_one, (const double *shiftv, double *pos), (shiftv, pos))
 
 #endif

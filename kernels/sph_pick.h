@@ -2,12 +2,19 @@
  * scene (viscosity kind x walls present x density diffusion kind, with or without the shifting
  * sums; 2D or 3D). VRES_SPH_PICKERS(_cpu) or VRES_SPH_PICKERS(_cuda) defines the three choosers
  * over one device's loops, so the CPU backend (lib/solver_cpu.c) and the CUDA backend
- * (lib/solver_cuda.cu) pick from the same tables. */
+ * (lib/solver_cuda.cu) pick from the same tables. The choosers take the scene's options as
+ * plain values (a vres_sph_pick), so the physics knows nothing of the solver's configuration. */
 #ifndef VRES_KERNELS_SPH_PICK_H
 #define VRES_KERNELS_SPH_PICK_H
 
-#include "../lib/solver_int.h"
 #include "sph.h"
+
+/* What picks an interaction variant: the options a scene fixes for its whole run. */
+typedef struct vres_sph_pick {
+    int viscosity;      /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR */
+    int walls;          /* 1 when the domain has wall particles */
+    int ddt;            /* VRES_DDT_* density diffusion kind */
+} vres_sph_pick;
 
 /* A 3D interaction loop variant (vres_sph_*). */
 typedef void (*vres_interact_fn)(size_t n, const vres_cells *g, const double *pos, const float *vel,
@@ -30,28 +37,28 @@ typedef void (*vres_interact2d_fn)(size_t n, const vres_cells *g, const vres_sph
      {pre##dbc##sfx, pre##dbc_molteni##sfx, pre##dbc_fourtakas##sfx}}
 
 /* pick_interaction (3D, no shifting sums), pick_interaction_shift (3D, with them) and
- * pick_interaction2d (2D, shift 0 or 1) for run configuration c, over the loops with suffix
+ * pick_interaction2d (2D, shift 0 or 1) for the scene's options p, over the loops with suffix
  * sfx: no diffusion code when DensityDT=0, no wall tests without walls, only the viscosity
  * asked for. */
 #define VRES_SPH_PICKERS(sfx)                                                                          \
-    static vres_interact_fn pick_interaction(const run_cfg *c)                                         \
+    static vres_interact_fn pick_interaction(vres_sph_pick p)                                          \
     {                                                                                                  \
         static const vres_interact_fn table[2][2][3] = {VRES_SPH_ROW6(vres_sph_, sfx),                 \
                                                         VRES_SPH_ROW6(vres_sph_laminar_, sfx)};        \
-        return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];                        \
+        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls != 0][p.ddt];                           \
     }                                                                                                  \
-    static vres_interact_shift_fn pick_interaction_shift(const run_cfg *c)                             \
+    static vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                              \
     {                                                                                                  \
         static const vres_interact_shift_fn table[2][2][3] = {VRES_SPH_ROW6(vres_sph_shift_, sfx),     \
                                                               VRES_SPH_ROW6(vres_sph_shift_laminar_, sfx)}; \
-        return table[c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];                        \
+        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls != 0][p.ddt];                           \
     }                                                                                                  \
-    static vres_interact2d_fn pick_interaction2d(const run_cfg *c, int shift)                          \
+    static vres_interact2d_fn pick_interaction2d(vres_sph_pick p, int shift)                           \
     {                                                                                                  \
         static const vres_interact2d_fn table[2][2][2][3] = {                                          \
             {VRES_SPH_ROW6(vres_sph2d_, sfx), VRES_SPH_ROW6(vres_sph2d_laminar_, sfx)},                \
             {VRES_SPH_ROW6(vres_sph2d_shift_, sfx), VRES_SPH_ROW6(vres_sph2d_shift_laminar_, sfx)}};   \
-        return table[shift][c->visco_kind == VRES_VISC_LAMINAR][c->nwall > 0][c->ddt];                 \
+        return table[shift][p.viscosity == VRES_VISC_LAMINAR][p.walls != 0][p.ddt];                    \
     }
 
 #endif

@@ -109,12 +109,7 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
 
     /* each particle's cell: the only per-particle arithmetic, done in parallel */
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++) {
-        int c[3];
-        key[i] = vres_cells_locate(g, pos + 3 * i, c)
-                     ? ((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0]
-                     : nc;
-    }
+    for (size_t i = 0; i < n; i++) key[i] = vres_cells_key(g, pos + 3 * i);
 
     /* counting sort, serial so that the order within a cell is the input order (reproducible
        sums); it is a few memory passes, cheap next to one interaction step */
@@ -183,19 +178,7 @@ int vres_cells_reorder(vres_cells *g, vres_domain *d)
 
 void vres_cells_wrap(const vres_cells *g, double *pos, size_t n)
 {
-    for (int a = 0; a < 3; a++) {
-        if (!g->periodic[a]) continue;
-        double lo = g->lo[a], hi = g->hi[a], L = g->period[a];
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; i++) {
-            double u = pos[3 * i + a];
-            if (u >= lo && u < hi) continue; /* the usual case; NaN falls through and stays NaN */
-            u = lo + fmod(u - lo, L);
-            if (u < lo) u += L;
-            if (u >= hi) u = lo; /* -tiny + L rounds to L: that point is lo */
-            pos[3 * i + a] = u;
-        }
-    }
+    if (g->periodic[0] || g->periodic[1] || g->periodic[2]) vres_cells_wrap_loop_cpu(n, g, pos);
 }
 
 void vres_cells_free(vres_cells *g)

@@ -6,8 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../kernels/state.h"
 #include "../kernels/eos.h"
 #include "../kernels/mdbc.h"
+#include "../kernels/motion.h"
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
 #include "cells.h"
@@ -16,7 +18,8 @@
 
 /* The CPU backend's state: the domain's arrays are the store's; these are the rest. */
 typedef struct cpu_ctx {
-    const vres_store *s;  /* the store (bodies, for the moving walls) */
+    vres_wall_body *body; /* [nbodies] which bodies move, by mkbound (for the moving walls); NULL without them */
+    size_t nbodies;       /* the store's bodies (entries of body, and of move_walls' mv) */
     vres_domain *d;       /* the domain stepped, in cell order after each sort */
     run_cfg c;            /* the run configuration */
     vres_sph_consts C;    /* interaction constants */
@@ -40,14 +43,6 @@ typedef struct cpu_ctx {
     vres_interact_fn interact;             /* 3D variant without shifting sums */
     vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
 } cpu_ctx;
-
-/* The index of the moving body whose mkbound is mk, or -1. */
-static int body_of(const vres_store *s, int mk)
-{
-    for (size_t k = 0; k < s->nbodies; k++)
-        if (s->body[k].kind == VRES_MOVING && s->body[k].mkbound == mk) return (int)k;
-    return -1;
-}
 
 /* The interaction variant choosers (kernels/sph_pick.h) over this backend's loops. */
 VRES_SPH_PICKERS(_cpu)
@@ -119,22 +114,13 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
     if (c->dim == 2) {
         size_t n = d->n;
-        double *px = x->x2d, *pz = x->x2d + n, *ir = x->inv_rho;
-        float *vx = x->v2d, *vz = x->v2d + n;
-        const double *pos = d->pos;
-        const float *vel = d->vel, *rho = d->rho;
-#pragma omp parallel for schedule(static)
-        for (size_t i = 0; i < n; i++) {
-            px[i] = pos[3 * i], pz[i] = pos[3 * i + 2];
-            vx[i] = vel[3 * i], vz[i] = vel[3 * i + 2];
-            ir[i] = 1.0 / rho[i];
-        }
-        vres_sph_2d P = {px, pz, vx, vz, d->rho, d->press, ir, d->mass_p, d->type};
+        vres_sph_split2d_cpu(n, n, d->pos, d->vel, d->rho, x->x2d, x->v2d, x->inv_rho);
+        vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, d->rho, d->press, x->inv_rho, d->mass_p, d->type};
         if (c->general)
             vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
                                    c->ddt, c->nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(c, shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
+            pick_interaction2d(vres_run_pick(c), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
                                          x->shiftv);
     } else if (c->general)
         vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
@@ -151,8 +137,7 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
 #pragma omp parallel for reduction(max : amax2, vmax) schedule(static)
     for (size_t i = 0; i < d->n; i++) {
         if (visc[i] > vmax) vmax = visc[i];
-        if (type[i] != VRES_FLUID) continue;
-        double a2 = ace[3 * i] * ace[3 * i] + ace[3 * i + 1] * ace[3 * i + 1] + ace[3 * i + 2] * ace[3 * i + 2];
+        double a2 = vres_sph_accel2(i, type, ace);
         if (a2 > amax2) amax2 = a2;
     }
     *visc_max = vmax;
@@ -176,16 +161,6 @@ static void shift_compute(cpu_ctx *x, double dt)
                    0.1 * d->dp);
 }
 
-/* Move each fluid particle by its shifting displacement (shiftv[4i..4i+2], m; zero elsewhere). */
-static void shift_apply(cpu_ctx *x)
-{
-    vres_domain *d = x->d;
-    const double *sv = x->shiftv;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < d->n; i++)
-        for (int k = 0; k < 3; k++) d->pos[3 * i + k] += sv[4 * i + k];
-}
-
 /* Symplectic corrector, with the shifting of the predicted state (DualSPHysics'
  * ComputeSymplecticCorr: displacement from the predicted velocity, added after the update). */
 static void cpu_correct(vres_backend *b, double dt, int shift)
@@ -195,7 +170,7 @@ static void cpu_correct(vres_backend *b, double dt, int shift)
     if (shift) shift_compute(x, dt);
     vres_sph_correct_cpu(d->n, d->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, d->pos, d->vel, d->rho, dt,
                          x->c.rho0);
-    if (shift) shift_apply(x);
+    if (shift) vres_shift_apply_cpu(d->n, x->shiftv, d->pos);
 }
 
 /* One Verlet step. */
@@ -206,7 +181,7 @@ static void cpu_verlet(vres_backend *b, double dt, int euler, int shift)
     if (shift) shift_compute(x, dt);
     vres_sph_verlet_cpu(d->n, d->type, d->pos, d->vel, d->rho, x->velm1, x->rhom1, x->ace, x->ar, dt, euler,
                         x->c.rho0);
-    if (shift) shift_apply(x);
+    if (shift) vres_shift_apply_cpu(d->n, x->shiftv, d->pos);
 }
 
 /* Moving walls to their bodies' transforms mv, with the rigid velocity field. */
@@ -215,22 +190,7 @@ static void cpu_move_walls(vres_backend *b, const vres_motion_state *mv)
     cpu_ctx *x = ctx_of(b);
     if (!x->xref) return;
     vres_domain *d = x->d;
-    const vres_store *s = x->s;
-    const double *xr = x->xref;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < d->n; i++) {
-        if (d->type[i] != VRES_MOVING) continue;
-        const vres_motion_state *m = &mv[body_of(s, d->mk[i])];
-        double *p = &d->pos[3 * i], r[3];
-        for (int a = 0; a < 3; a++)
-            p[a] = m->R[3 * a] * xr[3 * i] + m->R[3 * a + 1] * xr[3 * i + 1] + m->R[3 * a + 2] * xr[3 * i + 2] +
-                   m->d[a];
-        for (int a = 0; a < 3; a++) r[a] = p[a] - m->p[a];
-        d->vel[3 * i] = (float)(m->v[0] + m->w[1] * r[2] - m->w[2] * r[1]);
-        d->vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
-        d->vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
-        if (x->mvel) memcpy(&x->mvel[3 * i], &d->vel[3 * i], 3 * sizeof(float));
-    }
+    vres_move_wall_cpu(d->n, d->type, d->mk, x->xref, d->pos, d->vel, x->mvel, mv, x->body, x->nbodies);
 }
 
 /* Wrap along the periodic axes. */
@@ -250,13 +210,9 @@ static size_t cpu_check(vres_backend *b, size_t *nout)
     int check_rho = c->rhop_min < c->rhop_max;
 #pragma omp parallel for reduction(min : first) reduction(+ : out) schedule(static)
     for (size_t i = 0; i < d->n; i++) {
-        const double *p = &d->pos[3 * i];
-        int ok = isfinite(d->rho[i]) && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-        for (int k = 0; k < 3; k++) ok = ok && isfinite(d->vel[3 * i + k]);
-        if (ok && check_rho && d->type[i] == VRES_FLUID) ok = d->rho[i] >= c->rhop_min && d->rho[i] <= c->rhop_max;
-        int ijk[3];
-        if (ok && !vres_cells_locate(&x->cells, p, ijk)) out++;
-        if (!ok && i < first) first = i;
+        int k = vres_check_one(i, &x->cells, d->pos, d->vel, d->rho, d->type, check_rho, c->rhop_min, c->rhop_max);
+        out += k == VRES_CHECK_OUT;
+        if (k == VRES_CHECK_FATAL && i < first) first = i;
     }
     *nout = out;
     return first;
@@ -327,32 +283,15 @@ static void cpu_close(vres_backend *b)
     free(x->inv_rho);
     free(x->velm1);
     free(x->rhom1);
+    free(x->body);
     free(x);
     b->ctx = NULL;
-}
-
-vres_sph_consts vres_run_consts(const run_cfg *c)
-{
-    vres_sph_consts C = vres_sph_consts_make(c->dim, c->h, c->cs0);
-    int lam = c->visco_kind == VRES_VISC_LAMINAR;
-    C.alpha = lam ? 0 : c->visco;
-    C.alpha_wall = lam ? 0 : c->visco * c->visco_bound;
-    C.nu = lam ? c->visco : 0;
-    C.nu_wall = lam ? c->visco * c->visco_bound : 0;
-    C.shift_mode = c->shift;
-    C.ddt_khc = 2.0 * c->h * c->ddt_delta * c->cs0;
-    C.rho0 = c->rho0;
-    C.rho0_over_B = c->rho0 / c->B;
-    C.inv_gamma = 1.0 / c->gamma;
-    memcpy(C.g, c->g, sizeof C.g);
-    return C;
 }
 
 int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c)
 {
     cpu_ctx *x = vres_xcalloc(1, sizeof *x);
     size_t n = d->n;
-    x->s = s;
     x->d = d;
     x->c = *c;
     x->C = vres_run_consts(c);
@@ -382,10 +321,12 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     if (c->nmoving) {
         x->xref = vres_xmalloc(3 * n * sizeof *x->xref + 1);
         memcpy(x->xref, d->pos, 3 * n * sizeof *x->xref);
+        x->nbodies = s->nbodies;
+        x->body = vres_wall_bodies(s);
     }
     if (c->mdbc && c->slip >= 2) x->mvel = vres_xcalloc(3 * n + 1, sizeof *x->mvel);
-    x->interact = pick_interaction(c);
-    x->interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
+    x->interact = pick_interaction(vres_run_pick(c));
+    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c)) : NULL;
     memset(b, 0, sizeof *b);
     b->ctx = x;
     b->n = n;

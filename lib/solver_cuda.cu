@@ -2,8 +2,8 @@
  * lives in device arrays, is sorted by cell with CUB's radix sort, and is stepped by the very
  * per-particle functions of kernels/ (sph.h, mdbc.h, eos.h) that the CPU backend runs, through
  * their VRES_PARTICLE_LOOP / VRES_CELL_LOOP _cuda launchers. What is CUDA-only here is kept
- * mechanical: allocation and copies, the cell sort, gathers, reductions, and a few per-particle
- * helpers that mirror solver_cpu.c line for line (written as VRES_PARTICLE_LOOPs too).
+ * mechanical: allocation and copies, the cell sort, gathers, reductions, and thin per-particle
+ * wrappers that adapt kernels/' functions (the CPU backend's too) to them.
  *
  * Errors: every CUDA call is checked. The first failure prints "CUDA: what: message" and marks
  * the backend failed; from then on every operation returns at once with its failure value
@@ -19,8 +19,10 @@
 
 #include <cub/cub.cuh>
 
+#include "../kernels/state.h"
 #include "../kernels/eos.h"
 #include "../kernels/mdbc.h"
+#include "../kernels/motion.h"
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
 #include "cells.h"
@@ -29,12 +31,6 @@ extern "C" { /* C headers without their own extern "C" guard */
 #include "device.h"
 #include "log.h"
 }
-
-/* What move_walls needs of a body to find a moving wall particle's one (solver_cpu.c's body_of). */
-typedef struct wall_body {
-    int mkbound;          /* the body's mkbound */
-    int moving;           /* 1 for a body with a prescribed motion (VRES_MOVING) */
-} wall_body;
 
 /* Gather scratch classes: element sizes (bytes) of the per-particle arrays that follow the sort. */
 static const size_t scratch_size[5] = {1, 4, 8, 12, 24};
@@ -90,7 +86,7 @@ typedef struct cuda_ctx {
     double *dred;         /* [2] reductions of forces: largest fluid |a|^2 (m^2/s^4) and viscous rate (1/s) */
     unsigned long long *dres; /* [2] check: first fatal slot, particles out of the box; count_pairs: the sum */
     vres_motion_state *dmv;   /* [nbodies] the bodies' transforms for move_walls; NULL without moving walls */
-    wall_body *dbody;     /* [nbodies] which bodies move, by mkbound; NULL without moving walls */
+    vres_wall_body *dbody; /* [nbodies] which bodies move, by mkbound; NULL without moving walls */
 
     vres_interact_fn interact;             /* 3D variant without shifting sums */
     vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
@@ -140,15 +136,14 @@ static int grow_temp(cuda_ctx *x, size_t bytes)
     return 1;
 }
 
-/* ---- per-particle helpers (each mirrors the CPU backend's loop of the same purpose) ---- */
+/* ---- per-particle wrappers: the physics and rules are kernels/' (the CPU runs the same);
+ * what is here only adapts them to the device's sort and reductions ---- */
 
-/* The cell key of particle i (as vres_cells_build: ncells when outside the box) and its slot. */
+/* The cell key of particle i (kernels/cells.h: ncells when outside the box), as the 32-bit
+ * key the radix sort takes, and its slot. */
 VRES_HD static inline void keys_one(size_t i, const vres_cells *g, const double *pos, unsigned *key, size_t *slot)
 {
-    int c[3];
-    key[i] = vres_cells_locate(g, pos + 3 * i, c)
-                 ? (unsigned)(((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0])
-                 : (unsigned)g->ncells;
+    key[i] = (unsigned)vres_cells_key(g, pos + 3 * i);
     slot[i] = i;
 }
 VRES_PARTICLE_LOOP(keys, keys_one, (const vres_cells *g, const double *pos, unsigned *key, size_t *slot),
@@ -177,89 +172,22 @@ __global__ static void gather_kernel(size_t n, size_t w, const size_t *perm, con
         for (size_t j = 0; j < w; j++) dst[k * w + j] = src[perm[k] * w + j];
 }
 
-/* The 2D interaction's split arrays of particle i (as the CPU backend's forces). */
-VRES_HD static inline void split2d_one(size_t i, size_t n, const double *pos, const float *vel, const float *rho,
-                                       double *x2d, float *v2d, double *inv_rho)
-{
-    x2d[i] = pos[3 * i], x2d[n + i] = pos[3 * i + 2];
-    v2d[i] = vel[3 * i], v2d[n + i] = vel[3 * i + 2];
-    inv_rho[i] = 1.0 / rho[i];
-}
-VRES_PARTICLE_LOOP(split2d, split2d_one,
-                   (size_t np, const double *pos, const float *vel, const float *rho, double *x2d, float *v2d,
-                    double *inv_rho),
-                   (np, pos, vel, rho, x2d, v2d, inv_rho))
-
-/* |a|^2 of a fluid particle, 0 for the others (the CPU's reduction skips them). */
+/* kernels/sph.h's |a|^2 of particle i into a2[i], for the reduction of the largest. */
 VRES_HD static inline void accel2_one(size_t i, const uint8_t *type, const double *ace, double *a2)
 {
-    const double *a = &ace[3 * i];
-    a2[i] = type[i] == VRES_FLUID ? a[0] * a[0] + a[1] * a[1] + a[2] * a[2] : 0.0;
+    a2[i] = vres_sph_accel2(i, type, ace);
 }
 VRES_PARTICLE_LOOP(accel2, accel2_one, (const uint8_t *type, const double *ace, double *a2), (type, ace, a2))
 
-/* Move particle i by its shifting displacement (zero for walls: vres_shift_one cleared it). */
-VRES_HD static inline void shift_apply_one(size_t i, const double *shiftv, double *pos)
-{
-    for (int k = 0; k < 3; k++) pos[3 * i + k] += shiftv[4 * i + k];
-}
-VRES_PARTICLE_LOOP(shift_apply, shift_apply_one, (const double *shiftv, double *pos), (shiftv, pos))
-
-/* A moving wall particle to its body's transform, with the rigid velocity field, kept in mvel
- * too when not NULL (as the CPU's move_walls; the body is found by mkbound among the nb bodies
- * as its body_of does). */
-VRES_HD static inline void move_wall_one(size_t i, const uint8_t *type, const int32_t *mk, const double *xr,
-                                         double *pos, float *vel, float *mvel, const vres_motion_state *mv,
-                                         const wall_body *body, size_t nb)
-{
-    if (type[i] != VRES_MOVING) return;
-    size_t k = 0;
-    while (k < nb && !(body[k].moving && body[k].mkbound == mk[i])) k++;
-    if (k == nb) return; /* the solver refused such a particle at its start */
-    const vres_motion_state *m = &mv[k];
-    double *p = &pos[3 * i], r[3];
-    for (int a = 0; a < 3; a++)
-        p[a] = m->R[3 * a] * xr[3 * i] + m->R[3 * a + 1] * xr[3 * i + 1] + m->R[3 * a + 2] * xr[3 * i + 2] + m->d[a];
-    for (int a = 0; a < 3; a++) r[a] = p[a] - m->p[a];
-    vel[3 * i] = (float)(m->v[0] + m->w[1] * r[2] - m->w[2] * r[1]);
-    vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
-    vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
-    if (mvel) mvel[3 * i] = vel[3 * i], mvel[3 * i + 1] = vel[3 * i + 1], mvel[3 * i + 2] = vel[3 * i + 2];
-}
-VRES_PARTICLE_LOOP(move_wall, move_wall_one,
-                   (const uint8_t *type, const int32_t *mk, const double *xr, double *pos, float *vel,
-                    float *mvel, const vres_motion_state *mv, const wall_body *body, size_t nb),
-                   (type, mk, xr, pos, vel, mvel, mv, body, nb))
-
-/* Particle i's position mapped into [lo, hi) along the periodic axes (vres_cells_wrap's rule). */
-VRES_HD static inline void wrap_one(size_t i, const vres_cells *g, double *pos)
-{
-    for (int a = 0; a < 3; a++) {
-        if (!g->periodic[a]) continue;
-        double lo = g->lo[a], hi = g->hi[a], L = g->period[a], u = pos[3 * i + a];
-        if (u >= lo && u < hi) continue; /* NaN falls through and stays NaN */
-        u = lo + fmod(u - lo, L);
-        if (u < lo) u += L;
-        if (u >= hi) u = lo;
-        pos[3 * i + a] = u;
-    }
-}
-VRES_PARTICLE_LOOP(wrap, wrap_one, (const vres_cells *g, double *pos), (g, pos))
-
-/* The CPU's check rules for particle i: a non-finite position, velocity or density, or a fluid
- * density outside rmin..rmax (when check_rho), makes it fatal (res[0] = the smallest such slot);
- * a finite one outside the cells' box counts in res[1]. Integer atomics: order-free results. */
+/* kernels/state.h's verdict on particle i, reduced as the CPU's: res[0] the smallest fatal slot,
+ * res[1] the count of particles outside the box. Integer atomics: order-free results. */
 __device__ static inline void check_one(size_t i, const vres_cells *g, const double *pos, const float *vel,
                                         const float *rho, const uint8_t *type, int check_rho, double rmin,
                                         double rmax, unsigned long long *res)
 {
-    const double *p = &pos[3 * i];
-    int good = isfinite(rho[i]) && isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-    for (int k = 0; k < 3; k++) good = good && isfinite(vel[3 * i + k]);
-    if (good && check_rho && type[i] == VRES_FLUID) good = rho[i] >= rmin && rho[i] <= rmax;
-    int ijk[3];
-    if (good && !vres_cells_locate(g, p, ijk)) atomicAdd(&res[1], 1ULL);
-    if (!good) atomicMin(&res[0], (unsigned long long)i);
+    int k = vres_check_one(i, g, pos, vel, rho, type, check_rho, rmin, rmax);
+    if (k == VRES_CHECK_OUT) atomicAdd(&res[1], 1ULL);
+    if (k == VRES_CHECK_FATAL) atomicMin(&res[0], (unsigned long long)i);
 }
 VRES_PARTICLE_LOOP(check, check_one,
                    (const vres_cells *g, const double *pos, const float *vel, const float *rho, const uint8_t *type,
@@ -406,7 +334,7 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
     vres_eos_loop_cuda(n, x->rho, x->press, c->rho0, c->B, c->gamma);
     if (!launched(x, "EOS")) return 0;
     if (c->dim == 2) {
-        split2d_cuda(n, n, x->pos, x->vel, x->rho, x->x2d, x->v2d, x->inv_rho);
+        vres_sph_split2d_cuda(n, n, x->pos, x->vel, x->rho, x->x2d, x->v2d, x->inv_rho);
         vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, x->rho, x->press, x->inv_rho, x->mass, x->type};
         if (!launched(x, "2D split arrays") ||
             !ok(x, cudaMemcpy(x->dP, &P, sizeof P, cudaMemcpyHostToDevice), "copy the 2D arrays' set"))
@@ -415,7 +343,7 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
             vres_sph2d_general_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
                                     c->ddt, c->nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(c, shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc,
+            pick_interaction2d(vres_run_pick(c), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc,
                                          x->shiftv);
     } else if (c->general)
         vres_sph_general_cuda(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar,
@@ -471,7 +399,7 @@ static void cu_correct(vres_backend *b, double dt, int shift)
     if (shift) shift_compute(x, b->n, dt);
     vres_sph_correct_cuda(b->n, x->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, x->pos, x->vel, x->rho, dt,
                           x->c.rho0);
-    if (shift) shift_apply_cuda(b->n, x->shiftv, x->pos);
+    if (shift) vres_shift_apply_cuda(b->n, x->shiftv, x->pos);
     launched(x, "corrector");
 }
 
@@ -483,7 +411,7 @@ static void cu_verlet(vres_backend *b, double dt, int euler, int shift)
     if (shift) shift_compute(x, b->n, dt);
     vres_sph_verlet_cuda(b->n, x->type, x->pos, x->vel, x->rho, x->velm1, x->rhom1, x->ace, x->ar, dt, euler,
                          x->c.rho0);
-    if (shift) shift_apply_cuda(b->n, x->shiftv, x->pos);
+    if (shift) vres_shift_apply_cuda(b->n, x->shiftv, x->pos);
     launched(x, "Verlet step");
 }
 
@@ -493,7 +421,7 @@ static void cu_move_walls(vres_backend *b, const vres_motion_state *mv)
     cuda_ctx *x = ctx_of(b);
     if (x->failed || !x->xref) return;
     if (!ok(x, cudaMemcpy(x->dmv, mv, x->nbodies * sizeof *mv, cudaMemcpyHostToDevice), "copy the motions")) return;
-    move_wall_cuda(b->n, x->type, x->mk, x->xref, x->pos, x->vel, x->mvel, x->dmv, x->dbody, x->nbodies);
+    vres_move_wall_cuda(b->n, x->type, x->mk, x->xref, x->pos, x->vel, x->mvel, x->dmv, x->dbody, x->nbodies);
     launched(x, "moving walls");
 }
 
@@ -503,7 +431,7 @@ static void cu_wrap(vres_backend *b)
     cuda_ctx *x = ctx_of(b);
     const int *per = x->c.periodic;
     if (x->failed || !(per[0] || per[1] || per[2])) return;
-    wrap_cuda(b->n, x->dcells, x->pos);
+    vres_cells_wrap_loop_cuda(b->n, x->dcells, x->pos);
     launched(x, "periodic wrap");
 }
 
@@ -657,9 +585,7 @@ static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
     if (c->verlet && !(alloc_copy(x, &x->velm1, d->vel, n, 3, what) && alloc_copy(x, &x->rhom1, d->rho, n, 1, what)))
         return 0;
     if (c->nmoving) {
-        wall_body *wb = (wall_body *)vres_xcalloc(s->nbodies + 1, sizeof *wb);
-        for (size_t k = 0; k < s->nbodies; k++)
-            wb[k].mkbound = s->body[k].mkbound, wb[k].moving = s->body[k].kind == VRES_MOVING;
+        vres_wall_body *wb = vres_wall_bodies(s);
         int good = alloc_copy(x, &x->xref, d->pos, n, 3, what) && alloc_copy(x, &x->dbody, wb, s->nbodies, 1, what) &&
                    alloc(x, &x->dmv, s->nbodies * sizeof *x->dmv, what);
         free(wb);
@@ -720,8 +646,8 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
         cu_close(b);
         return -1;
     }
-    x->interact = pick_interaction(c);
-    x->interact_shift = c->shift ? pick_interaction_shift(c) : NULL;
+    x->interact = pick_interaction(vres_run_pick(c));
+    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c)) : NULL;
     memset(b, 0, sizeof *b);
     b->ctx = x;
     b->n = d->n;

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "../kernels/sph.h"
+#include "../kernels/sph_pick.h"
 #include "solver_motion.h"
 #include "store.h"
 
@@ -82,9 +83,9 @@ typedef struct vres_backend {
     void (*correct)(struct vres_backend *b, double dt, int shift);
     /* One Verlet step dt (s), an Euler step when euler is 1; shifting as correct. */
     void (*verlet)(struct vres_backend *b, double dt, int euler, int shift);
-    /* Place the moving walls: x = R x_ref + d of their body's transform mv[k] (k the body's
-     * index in the store, from the start positions x_ref the backend keeps), velocity
-     * v + w x (x - p). Does nothing without moving walls. */
+    /* Place the moving walls (kernels/motion.h): x = R x_ref + d of their body's transform mv[k]
+     * (k the body's index in the store, from the start positions x_ref the backend keeps),
+     * velocity v + w x (x - p). Does nothing without moving walls. */
     void (*move_walls)(struct vres_backend *b, const vres_motion_state *mv);
     /* Wrap positions along the periodic axes. */
     void (*wrap)(struct vres_backend *b);
@@ -114,6 +115,13 @@ typedef struct vres_backend {
 
 /* The kernel and physics constants of the interaction for configuration c. */
 vres_sph_consts vres_run_consts(const run_cfg *c);
+
+/* The options that pick configuration c's interaction variant (kernels/sph_pick.h). */
+vres_sph_pick vres_run_pick(const run_cfg *c);
+
+/* The table of store s's bodies that placing its moving walls reads (kernels/motion.h),
+ * s->nbodies entries (at least one allocated); the caller frees it. */
+vres_wall_body *vres_wall_bodies(const vres_store *s);
 
 /* Open the CPU backend over domain d of store s (the store's own arrays: d must live until
  * close). Moving walls keep d's positions now as their reference. 0, or -1 after printing why. */

@@ -1,20 +1,13 @@
 /* solver_motion.h - prescribed motion of moving walls (DualSPHysics' <motion> segments, store.h's
  * vres_body and vres_motion_seg): the rigid transform that takes a body from its position at
  * time 0 to its position at time t, and its velocity field at t. Evaluated from the start of
- * the motion at each call, so no error accumulates over a run. */
+ * the motion at each call, so no error accumulates over a run. The transform's struct
+ * (vres_motion_state) and the placing of a moving wall particle by it are kernels/motion.h's. */
 #ifndef VRES_SOLVER_MOTION_H
 #define VRES_SOLVER_MOTION_H
 
+#include "../kernels/motion.h"
 #include "store.h"
-
-/* A body's motion at one time. */
-typedef struct vres_motion_state {
-    double R[9];    /* rotation (row-major) of x(t) = R x(0) + d */
-    double d[3];    /* translation of the same (m) */
-    double v[3];    /* velocity of the point p (m/s) */
-    double w[3];    /* angular velocity (rad/s): a point x moves at v + w x (x - p) */
-    double p[3];    /* point of the rotation axis (m) */
-} vres_motion_state;
 
 /* The motion of body b at time t (s): segments run one after the other from b->mv_first at
  * b->mv_start (each for its duration, negative: for ever, then the one its next names), and

@@ -48,7 +48,7 @@ const char *vres_ptype_name(int type)
 
 int vres_ptype_is_wall(int type)
 {
-    return type == VRES_FIXED || type == VRES_MOVING || type == VRES_FLOATING;
+    return vres_type_is_wall(type);
 }
 
 const vres_param *vres_params_find(const vres_params *P, const char *name)

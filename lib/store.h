@@ -11,23 +11,26 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "../kernels/ptype.h"
+
 #define VRES_STORE_FORMAT "vres-store" /* value of the root attribute "format" */
 #define VRES_STORE_VERSION 1           /* value of the root attribute "format_version" */
 
-/* Particle types (dataset Type). Walls are FIXED, MOVING or FLOATING by their mkbound. */
+/* Particle types (dataset Type): the codes and their roles are kernels/ptype.h's, which the
+ * physics tests with its predicates. Walls are FIXED, MOVING or FLOATING by their mkbound. */
 typedef enum vres_ptype {
-    VRES_FLUID = 0,    /* ordinary fluid particle */
-    VRES_BUFFER = 1,   /* fluid particle of a buffer band, interpolated from the coupled domain */
-    VRES_FIXED = 2,    /* fixed wall particle */
-    VRES_MOVING = 3,   /* wall particle with a prescribed motion */
-    VRES_FLOATING = 4, /* particle of a floating rigid body */
-    VRES_INLET = 5,    /* particle of an inlet/outlet zone */
-    VRES_NTYPES = 6
+    VRES_FLUID = VRES_PTYPE_FLUID,       /* ordinary fluid particle */
+    VRES_BUFFER = VRES_PTYPE_BUFFER,     /* fluid particle of a buffer band, interpolated from the coupled domain */
+    VRES_FIXED = VRES_PTYPE_FIXED,       /* fixed wall particle */
+    VRES_MOVING = VRES_PTYPE_MOVING,     /* wall particle with a prescribed motion */
+    VRES_FLOATING = VRES_PTYPE_FLOATING, /* particle of a floating rigid body */
+    VRES_INLET = VRES_PTYPE_INLET,       /* particle of an inlet/outlet zone */
+    VRES_NTYPES = VRES_PTYPE_COUNT       /* number of types */
 } vres_ptype;
 
 /* Lower-case name of a particle type ("fluid", "buffer", ...); "?" when out of range. */
 const char *vres_ptype_name(int type);
-/* 1 for the wall types (FIXED, MOVING, FLOATING). */
+/* 1 for the wall types (FIXED, MOVING, FLOATING): kernels/ptype.h's vres_type_is_wall. */
 int vres_ptype_is_wall(int type);
 
 /* One particle set: the root domain or a refinement sub-domain. Arrays hold n entries

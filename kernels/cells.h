@@ -1,0 +1,213 @@
+/* cells.h (kernels/) - the cell-linked list as the per-particle physics reads it, written once
+ * for the CPU and CUDA (see device.h): the list's struct, a particle's cell and its key (what
+ * both backends sort by), its neighbour cells (with their periodic shifts), the 2D row ranges
+ * of a cell, the pair count, and the periodic wrap of a position. How a list is built (the box, the sort by cell, the
+ * gathers that make memory follow the cells) is the host's: lib/cells.h, which includes this.
+ *
+ * The box is cut into cells at least as wide as the search radius (2h for the Wendland kernel);
+ * a particle's neighbours within the radius lie in the 3^dim cells around its own. 2D cases
+ * live in the x-z plane: one cell layer in y, and y is ignored. Any axis may be periodic with
+ * period the box length along it; neighbour cells then wrap and come with the shift that turns
+ * a particle's position into its image. In an interaction loop (no callback per pair):
+ *
+ *     vres_cell_range nb[27];
+ *     int m = vres_cells_neighbours(&cells, &pos[3 * a], nb);
+ *     for (int c = 0; c < m; c++)
+ *         for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+ *             double dx = pos[3*a] - (pos[3*b] + nb[c].shift[0]), ...;  r2 = ...;
+ *             if (r2 >= 4 h^2) continue;   // cells hold candidates; the distance decides
+ *             ...                            // b == a with zero shift is the particle itself
+ *         }
+ *
+ * Particles outside the box (or with a NaN coordinate) are in no cell: their key is ncells and
+ * the sort puts them after every cell, where no neighbour search sees them. */
+#ifndef VRES_KERNELS_CELLS_H
+#define VRES_KERNELS_CELLS_H
+
+#include <math.h>
+#include <stddef.h>
+
+#include "device.h"
+
+#ifdef __cplusplus
+extern "C" { /* usable from the CUDA sources (.cu, compiled as C++) */
+#endif
+
+/* A cell-linked list over a fixed box. Fields are read by the inline helpers below (so a
+ * device copy of the struct, with device pointers, works in CUDA code); set them only
+ * through lib/cells.h's vres_cells_init / vres_cells_build. */
+typedef struct vres_cells {
+    int dim;            /* 2 (x-z plane, one cell layer in y) or 3 */
+    int periodic[3];    /* 1 where the axis wraps with period hi - lo */
+    int nc[3];          /* number of cells along x, y, z (nc[1] = 1 in 2D) */
+    double lo[3];       /* box lower corner = corner of cell (0,0,0) (m) */
+    double hi[3];       /* box upper corner (m); particles must lie in [lo, hi] ([lo, hi) on a periodic axis) */
+    double cell[3];     /* cell edge along each axis (m), >= the search radius */
+    double period[3];   /* hi - lo on a periodic axis, 0 elsewhere (m) */
+    size_t ncells;      /* nc[0] nc[1] nc[2] */
+    size_t n;           /* particles sorted by the last vres_cells_build */
+    size_t *begin;      /* [ncells + 2] sorted-slot offsets: cell c holds slots [begin[c], begin[c+1]);
+                           slots [begin[ncells], n) hold the particles outside the box */
+    size_t *perm;       /* [n] particle index (in the order given to the build) of each sorted slot */
+    size_t nout;        /* particles outside the box at the last build */
+    size_t first_out;   /* smallest index of those, (size_t)-1 when there is none */
+    size_t cap;         /* particles perm, key and scratch have room for */
+    size_t *key;        /* [cap] work array of the build: each particle's cell (ncells when outside) */
+    void *scratch;      /* [cap * 24 bytes] work buffer of vres_cells_gather */
+} vres_cells;
+
+/* One neighbouring cell: a range of sorted slots and the periodic shift of its particles. */
+typedef struct vres_cell_range {
+    size_t begin;       /* first sorted slot of the cell */
+    size_t end;         /* one past its last slot */
+    double shift[3];    /* add to a position in this cell to get the image next to the searching
+                           particle: 0, or -/+ the period on axes that wrapped (m) */
+} vres_cell_range;
+
+/* Cell coordinates ijk of position x (m). Returns 1, or 0 when x lies outside the box (then
+ * ijk is unspecified). The build and the neighbour search use this same test. */
+VRES_HD static inline int vres_cells_locate(const vres_cells *g, const double x[3], int ijk[3])
+{
+    ijk[1] = 0;
+    for (int a = 0; a < 3; a++) {
+        if (a == 1 && g->dim == 2) continue;
+        double u = x[a];
+        /* written so that NaN fails the test */
+        if (!(u >= g->lo[a] && (g->periodic[a] ? u < g->hi[a] : u <= g->hi[a]))) return 0;
+        int i = (int)((u - g->lo[a]) / g->cell[a]);
+        ijk[a] = i < g->nc[a] ? i : g->nc[a] - 1; /* u == hi, or rounding just below it */
+    }
+    return 1;
+}
+
+/* The sort key of position x (m): its cell's index (x fastest, then y, then z), or ncells when
+ * x lies outside the box (or has a NaN coordinate), so that those sort after every cell. */
+VRES_HD static inline size_t vres_cells_key(const vres_cells *g, const double x[3])
+{
+    int c[3];
+    if (!vres_cells_locate(g, x, c)) return g->ncells;
+    return ((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0];
+}
+
+/* Particle i's position pos[3i..3i+2] (m) mapped into [lo, hi) along the periodic axes: a
+ * particle that crossed the boundary re-enters on the other side; other axes are left alone. */
+VRES_HD static inline void vres_cells_wrap_one(size_t i, const vres_cells *g, double *pos)
+{
+    for (int a = 0; a < 3; a++) {
+        if (!g->periodic[a]) continue;
+        double lo = g->lo[a], hi = g->hi[a], L = g->period[a], u = pos[3 * i + a];
+        if (u >= lo && u < hi) continue; /* the usual case; NaN falls through and stays NaN */
+        u = lo + fmod(u - lo, L);
+        if (u < lo) u += L;
+        if (u >= hi) u = lo; /* -tiny + L rounds to L: that point is lo */
+        pos[3 * i + a] = u;
+    }
+}
+
+/* vres_cells_wrap_loop_cpu / _cuda (n, g, pos): vres_cells_wrap_one over n particles. */
+VRES_PARTICLE_LOOP(vres_cells_wrap_loop, vres_cells_wrap_one, (const vres_cells *g, double *pos), (g, pos))
+
+/* The non-empty cells among the 3^dim around position x (m), with their periodic shifts, into
+ * r[0..27). Returns how many; 0 when x is outside the box. Every particle within the search
+ * radius of x (or of an image of it) lies in one of them, each image exactly once. */
+VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const double x[3], vres_cell_range r[27])
+{
+    int c[3], m = 0, dy = g->dim == 2 ? 0 : 1;
+    if (!vres_cells_locate(g, x, c)) return 0;
+    for (int oz = -1; oz <= 1; oz++)
+        for (int oy = -dy; oy <= dy; oy++)
+            for (int ox = -1; ox <= 1; ox++) {
+                int k[3] = {c[0] + ox, c[1] + oy, c[2] + oz}, ok = 1;
+                double s[3] = {0, 0, 0};
+                for (int a = 0; a < 3; a++) {
+                    if (k[a] >= 0 && k[a] < g->nc[a]) continue;
+                    if (!g->periodic[a]) { ok = 0; break; }
+                    /* the cell one past the edge is the first cell on the other side,
+                       with its particles seen one period away */
+                    s[a] = k[a] < 0 ? -g->period[a] : g->period[a];
+                    k[a] = k[a] < 0 ? k[a] + g->nc[a] : k[a] - g->nc[a];
+                }
+                if (!ok) continue;
+                size_t cell = ((size_t)k[2] * (size_t)g->nc[1] + (size_t)k[1]) * (size_t)g->nc[0] + (size_t)k[0];
+                if (g->begin[cell] == g->begin[cell + 1]) continue;
+                r[m].begin = g->begin[cell];
+                r[m].end = g->begin[cell + 1];
+                r[m].shift[0] = s[0];
+                r[m].shift[1] = s[1];
+                r[m].shift[2] = s[2];
+                m++;
+            }
+    return m;
+}
+
+/* The neighbour ranges of 2D cell (i, k) (x index i, z index k), for every particle in it:
+ * for each of the rows k-1, k, k+1 the cells i-1, i, i+1, with the cells of a row that lie
+ * side by side in memory (no periodic wrap between them) merged into one range, so a row is
+ * one contiguous run of slots. Ranges come in the order vres_cells_neighbours gives their
+ * cells (so sums over them add in the same order); empty cells are left out. Returns how
+ * many, at most 9, into r. Only for dim 2 and a cell inside the grid. */
+VRES_HD static inline int vres_cells_rows2d(const vres_cells *g, int i, int k, vres_cell_range r[9])
+{
+    int m = 0, nx = g->nc[0], nz = g->nc[2];
+    for (int oz = -1; oz <= 1; oz++) {
+        int kz = k + oz;
+        double sz = 0;
+        if (kz < 0 || kz >= nz) {
+            if (!g->periodic[2]) continue;
+            sz = kz < 0 ? -g->period[2] : g->period[2];
+            kz = kz < 0 ? kz + nz : kz - nz;
+        }
+        const size_t *row = g->begin + (size_t)kz * (size_t)nx;
+        for (int ox = -1; ox <= 1; ox++) {
+            int kx = i + ox;
+            double sx = 0;
+            if (kx < 0 || kx >= nx) {
+                if (!g->periodic[0]) continue;
+                sx = kx < 0 ? -g->period[0] : g->period[0];
+                kx = kx < 0 ? kx + nx : kx - nx;
+            }
+            size_t b = row[kx], e = row[kx + 1];
+            if (b == e) continue;
+            if (m && r[m - 1].end == b && r[m - 1].shift[0] == sx && r[m - 1].shift[2] == sz) {
+                r[m - 1].end = e; /* the next slots in memory, same image: one range */
+                continue;
+            }
+            r[m].begin = b;
+            r[m].end = e;
+            r[m].shift[0] = sx;
+            r[m].shift[1] = 0;
+            r[m].shift[2] = sz;
+            m++;
+        }
+    }
+    return m;
+}
+
+/* How many particles b != a lie within sqrt(r2max) (m) of particle a (images across periodic
+ * axes counted as they come), for positions pos [3n] in the cells' slot order: the count of
+ * ordered neighbour pairs that the interaction sees, from one side. */
+VRES_HD static inline size_t vres_cells_count_within(const vres_cells *g, const double *pos, size_t a, double r2max)
+{
+    vres_cell_range nb[27];
+    const double *pa = &pos[3 * a];
+    size_t total = 0;
+    int m = vres_cells_neighbours(g, pa, nb);
+    for (int k = 0; k < m; k++)
+        for (size_t j = nb[k].begin; j < nb[k].end; j++) {
+            if (j == a && !nb[k].shift[0] && !nb[k].shift[1] && !nb[k].shift[2]) continue;
+            double r2 = 0;
+            for (int q = 0; q < 3; q++) {
+                if (q == 1 && g->dim == 2) continue;
+                double dq = pa[q] - (pos[3 * j + q] + nb[k].shift[q]);
+                r2 += dq * dq;
+            }
+            total += r2 < r2max;
+        }
+    return total;
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

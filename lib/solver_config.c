@@ -1,0 +1,289 @@
+/* solver_config.c - what vres-run accepts of a store (see solver_run.h): every parameter the
+ * solver uses, read and checked once into the run configuration (solver_int.h's run_cfg), with
+ * each refusal named, and the module list printed at start and recorded in every snapshot. */
+#include <ctype.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "log.h"
+#include "solver_motion.h"
+#include "solver_run.h"
+
+/* Parameters the solver knows (uses, or checks to be at a value that needs nothing). A store
+ * parameter outside this list gets a warning, never silence. */
+static const char *const known_params[] = {
+    "dim", "dp", "pointref", "pointmin", "pointmax", "gravity", "rhop0", "rhopgradient", "gamma", "hswl",
+    "speedsystem", "coefsound", "cs0", "B", "coefh", "hdp", "h", "cflnumber", "massfluid", "massbound",
+    "Boundary", "SlipMode", "StepAlgorithm", "VerletSteps", "Kernel", "ViscoTreatment", "Visco",
+    "ViscoBoundFactor", "DensityDT", "DensityDTvalue", "Shifting", "ShiftCoef", "ShiftTFS", "ShiftAdvCoef",
+    "ShiftAdvALE", "ShiftAdvNCPress", "RigidAlgorithm", "FtPause", "CoefDtMin", "DtIni", "DtMin", "DtFixed",
+    "DtAllParticles", "TimeMax", "TimeOut", "RhopOutMin", "RhopOutMax", "MinFluidStop", "periodic",
+    "periodic_xinc", "periodic_yinc", "periodic_zinc", "domain_min", "domain_max", "lattice", "modules", "run_t0",
+    "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded", NULL};
+
+/* 1 when name is in known_params. */
+static int is_known(const char *name)
+{
+    for (int i = 0; known_params[i]; i++)
+        if (!strcmp(known_params[i], name)) return 1;
+    return 0;
+}
+
+/* Value of a parameter that must be present and numeric; sets *bad and says so otherwise. */
+static double need(const vres_store *s, const char *name, int *bad)
+{
+    const vres_param *p = vres_params_find(&s->params, name);
+    if (!p || p->n < 1) {
+        vres_error("the store has no numeric parameter %s, which vres-run needs", name);
+        *bad = 1;
+        return 0;
+    }
+    return p->v[0];
+}
+
+/* Refuse a parameter whose value asks for something not implemented: *bad set, message
+ * naming the parameter, its value and what vres-run does support. */
+static void not_impl(int *bad, const char *name, double v, const char *what, const char *supported)
+{
+    vres_error("%s=%g (%s) is not implemented yet: vres-run supports %s", name, v, what, supported);
+    *bad = 1;
+}
+
+/* The periodic axes and the cells' box into c. An axis is periodic by the store's parameter
+ * periodic; its period is the simulation domain's length along it plus dp when that domain is
+ * the particles' extent (origin auto: the lattice then repeats with its spacing across the
+ * boundary, as DualSPHysics' map limits with periodic axes), and the domain's length when the
+ * case fixed it. Shifted periodicity (XPeriodicIncZ...) is refused. 0, or -1 after printing why. */
+static int periodic_box(const vres_store *s, run_cfg *c)
+{
+    static const char *const inc_name[3] = {"periodic_xinc", "periodic_yinc", "periodic_zinc"};
+    static const char axis[3] = {'x', 'y', 'z'};
+    const vres_param *per = vres_params_find(&s->params, "periodic");
+    const vres_param *dom = vres_params_find(&s->params, "domain_min");
+    int fixed = dom && dom->origin && strcmp(dom->origin, "auto") != 0;
+    double half = fixed ? 0 : 0.5 * s->dom[0].dp;
+    int bad = 0;
+    for (int a = 0; a < 3; a++) {
+        c->periodic[a] = per && per->n == 3 && per->v[a] != 0;
+        c->box_lo[a] = s->domain_min[a] - (c->periodic[a] ? half : 0);
+        c->box_hi[a] = s->domain_max[a] + (c->periodic[a] ? half : 0);
+        if (!c->periodic[a]) continue;
+        const vres_param *inc = vres_params_find(&s->params, inc_name[a]);
+        for (int k = 0; inc && k < inc->n && k < 3; k++)
+            if (inc->v[k] != 0)
+                vres_error("periodic along %c with an increment %g m along %c (%cPeriodicInc%c): not implemented "
+                           "yet; vres-run supports periodic boundaries without increment", axis[a], inc->v[k],
+                           axis[k], toupper(axis[a]), toupper(axis[k])), bad = 1;
+        if (!(c->box_hi[a] - c->box_lo[a] >= 2.0 * c->h))
+            vres_error("periodic along %c with a period of %g m: must be at least the kernel support 2h = %g m",
+                       axis[a], c->box_hi[a] - c->box_lo[a], 2.0 * c->h), bad = 1;
+    }
+    return bad ? -1 : 0;
+}
+
+/* The index of the moving body whose mkbound is mk, or -1. */
+static int body_of(const vres_store *s, int mk)
+{
+    for (size_t k = 0; k < s->nbodies; k++)
+        if (s->body[k].kind == VRES_MOVING && s->body[k].mkbound == mk) return (int)k;
+    return -1;
+}
+
+/* Check the bodies: moving ones with a motion vres_motion_eval can follow, each moving wall
+ * particle belonging to one; floating bodies refused. 0, or -1 after printing why. */
+static int check_bodies(const vres_store *s)
+{
+    int bad = 0;
+    for (size_t k = 0; k < s->nbodies; k++) {
+        const vres_body *b = &s->body[k];
+        if (b->kind == VRES_FLOATING)
+            vres_error("floating body mkbound %d: not implemented yet (vres-run moves walls with a prescribed "
+                       "motion only)", b->mkbound), bad = 1;
+        else if (b->kind != VRES_MOVING) vres_error("body mkbound %d of unknown kind %d", b->mkbound, b->kind), bad = 1;
+        else if (vres_motion_check(b) != 0) bad = 1;
+    }
+    const vres_domain *d = &s->dom[0];
+    for (size_t i = 0; i < d->n; i++)
+        if (vres_type_is_moving(d->type[i]) && body_of(s, d->mk[i]) < 0) {
+            vres_error("moving wall particle id %llu has mkbound %d, which no <motion> body moves",
+                       (unsigned long long)d->id[i], d->mk[i]);
+            return -1;
+        }
+    return bad ? -1 : 0;
+}
+
+/* Read and check every parameter of the store into c; 0, or -1 after printing each problem. */
+int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
+{
+    int bad = 0;
+    const vres_params *P = &s->params;
+    memset(c, 0, sizeof *c);
+    if (s->ndomains != 1) {
+        vres_error("the store has %zu domains: variable resolution is a later issue; this vres-run runs "
+                   "single-domain stores only", s->ndomains);
+        return -1;
+    }
+    if (s->nboxes) {
+        vres_error("the case defines %zu refinement boxes (<vres>): variable resolution is a later issue; this "
+                   "vres-run runs single-resolution stores only (remove the <vres> section or make it inactive)",
+                   s->nboxes);
+        return -1;
+    }
+    const vres_domain *d = &s->dom[0];
+    c->dim = s->dim;
+    c->h = d->h;
+    if ((c->dim != 2 && c->dim != 3) || !(c->h > 0)) {
+        vres_error("the store has dimension %d and h %g m: need 2 or 3 and h > 0", c->dim, c->h);
+        return -1;
+    }
+    size_t count[VRES_NTYPES] = {0};
+    for (size_t i = 0; i < d->n; i++) count[d->type[i] < VRES_NTYPES ? d->type[i] : VRES_BUFFER]++;
+    c->nfluid = count[VRES_FLUID];
+    c->nmoving = count[VRES_MOVING];
+    c->nwall = count[VRES_FIXED] + c->nmoving;
+    if (!c->nfluid) vres_error("the store has no fluid particles: nothing to run"), bad = 1;
+    for (int t = 0; t < VRES_NTYPES; t++)
+        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && count[t])
+            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
+                       count[t], vres_ptype_name(t)), bad = 1;
+    if (check_bodies(s) != 0) bad = 1;
+    if (s->inout_xml) vres_error("inlet/outlet zones (<inout>): not implemented yet"), bad = 1;
+
+    c->rho0 = need(s, "rhop0", &bad);
+    c->gamma = need(s, "gamma", &bad);
+    c->B = need(s, "B", &bad);
+    c->cs0 = need(s, "cs0", &bad);
+    c->cfl = need(s, "cflnumber", &bad);
+    const vres_param *g = vres_params_find(P, "gravity");
+    if (!g || g->n != 3) vres_error("the store has no 3-component parameter gravity"), bad = 1;
+    else memcpy(c->g, g->v, sizeof c->g);
+    if (bad) return -1;
+    if (!(c->rho0 > 0) || !(c->gamma > 0) || !(c->B > 0) || !(c->cs0 > 0))
+        vres_error("rhop0 %g, gamma %g, B %g, cs0 %g: all must be above zero", c->rho0, c->gamma, c->B, c->cs0),
+            bad = 1;
+    if (!(c->cfl > 0 && c->cfl <= 1)) vres_error("cflnumber=%g: must lie in (0, 1]", c->cfl), bad = 1;
+
+    double v;
+    v = vres_params_get(P, "Boundary", 1);
+    c->mdbc = v == 2;
+    c->slip = 1;
+    if (v != 1 && v != 2) not_impl(&bad, "Boundary", v, "unknown", "1 (DBC), 2 (mDBC)");
+    if (c->mdbc) {
+        v = vres_params_get(P, "SlipMode", 1);
+        c->slip = (int)v;
+        if (v != 1 && v != 2 && v != 3)
+            vres_error("SlipMode=%g: must be 1 (the wall's own velocity), 2 (no-slip) or 3 (free slip)", v), bad = 1;
+    }
+    if (c->mdbc) {
+        for (size_t i = 0; i < d->n; i++)
+            if (vres_type_is_wall(d->type[i]) && d->normal &&
+                (d->normal[3 * i] != 0 || d->normal[3 * i + 1] != 0 || d->normal[3 * i + 2] != 0))
+                c->nnormal++;
+        if (!c->nnormal)
+            vres_warn("Boundary=2 (mDBC) but no wall particle has a normal: every wall behaves as DBC (draw the walls "
+                      "as faces with <layers> for GenCase-style normals)");
+    }
+    v = vres_params_get(P, "StepAlgorithm", 2);
+    c->verlet = v == 1;
+    if (v != 1 && v != 2) not_impl(&bad, "StepAlgorithm", v, "unknown", "1 (Verlet), 2 (Symplectic)");
+    c->verlet_steps = (int)vres_params_get(P, "VerletSteps", 40);
+    if (c->verlet && !(c->verlet_steps >= 1 && c->verlet_steps == vres_params_get(P, "VerletSteps", 40)))
+        vres_error("VerletSteps=%g: must be a whole number of steps, at least 1",
+                   vres_params_get(P, "VerletSteps", 40)), bad = 1;
+    if ((v = vres_params_get(P, "Kernel", 2)) != 2) not_impl(&bad, "Kernel", v, "not Wendland", "2 (Wendland)");
+    c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", 1);
+    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR)
+        not_impl(&bad, "ViscoTreatment", vres_params_get(P, "ViscoTreatment", 1),
+                 c->visco_kind == 2 ? "laminar+SPS" : "unknown", "1 (artificial), 3 (laminar)");
+    v = vres_params_get(P, "Shifting", 0);
+    c->shift = (int)v;
+    if (v != c->shift || c->shift < 0 || c->shift > 3)
+        not_impl(&bad, "Shifting", v, v == 4 ? "advanced shifting" : "unknown",
+                 "0 (none), 1 (not near walls), 2 (not near fixed walls), 3 (full)");
+    c->shift_coef = vres_params_get(P, "ShiftCoef", -2);
+    c->shift_tfs = vres_params_get(P, "ShiftTFS", 0);
+    if (c->shift && !(c->shift_tfs >= 0 && c->shift_tfs < c->dim))
+        vres_error("ShiftTFS=%g: must lie in [0, %d) (the dimension: div r inside the fluid)", c->shift_tfs, c->dim),
+            bad = 1;
+    if ((v = vres_params_get(P, "DtFixed", 0)) != 0) not_impl(&bad, "DtFixed", v, "fixed time step", "0 (variable)");
+    c->min_fluid = vres_params_get(P, "MinFluidStop", 0);
+    if (!(c->min_fluid >= 0 && c->min_fluid < 1))
+        vres_error("MinFluidStop=%g: must lie in [0, 1) (the fraction of the fluid particles below which the run "
+                   "stops)", c->min_fluid), bad = 1;
+    c->ddt = (int)vres_params_get(P, "DensityDT", 0);
+    if (c->ddt < 0 || c->ddt > 2 || c->ddt != vres_params_get(P, "DensityDT", 0))
+        not_impl(&bad, "DensityDT", vres_params_get(P, "DensityDT", 0), "Fourtakas on all the fluid or unknown",
+                 "0 (none), 1 (Molteni), 2 (Fourtakas)");
+    c->ddt_delta = vres_params_get(P, "DensityDTvalue", 0.1);
+    if (periodic_box(s, c) != 0) bad = 1;
+    const vres_param *vp = vres_params_find(P, "Visco");
+    if (!vp || vp->n < 1)
+        vres_error("the store has no parameter Visco (artificial viscosity alpha, or kinematic viscosity in m^2/s "
+                   "when laminar): give it in the case (<parameter key=\"Visco\" value=\"0.01\"/>) or with "
+                   "vres-gencase --set"), bad = 1;
+    else if (!(vp->v[0] >= 0)) vres_error("Visco=%g: must not be negative", vp->v[0]), bad = 1;
+    else c->visco = vp->v[0];
+    c->visco_bound = vres_params_get(P, "ViscoBoundFactor", 1);
+    if (!(c->visco_bound >= 0)) vres_error("ViscoBoundFactor=%g: must not be negative", c->visco_bound), bad = 1;
+
+    c->tmax = o->tmax > 0 ? o->tmax : vres_params_get(P, "TimeMax", 0);
+    c->tout = o->tout > 0 ? o->tout : vres_params_get(P, "TimeOut", 0);
+    if (!(c->tmax > 0)) vres_error("no end time: the store has no TimeMax; give --tmax T"), bad = 1;
+    if (!(c->tout > 0)) vres_error("no output interval: the store has no TimeOut; give --tout DT"), bad = 1;
+    c->dtmin = vres_params_get(P, "DtMin", 0);
+    if (!(c->dtmin > 0)) c->dtmin = vres_params_get(P, "CoefDtMin", 0.05) * c->h / c->cs0;
+    c->rhop_min = vres_params_get(P, "RhopOutMin", 700);
+    c->rhop_max = vres_params_get(P, "RhopOutMax", 1300);
+    const char *loop = getenv("VRES_LOOP");
+    c->general = loop && !strcmp(loop, "general");
+    if (loop && !c->general && strcmp(loop, "specialised"))
+        vres_warn("VRES_LOOP=%s not known (general or specialised): using the specialised loop", loop);
+    if (c->general) vres_info("VRES_LOOP=general: the general interaction loop (options tested at run time)");
+
+    for (size_t i = 0; i < P->n; i++)
+        if (!is_known(P->p[i].name)) vres_warn("parameter %s is not known to vres-run: not used", P->p[i].name);
+    const vres_param *dti = vres_params_find(P, "DtIni");
+    if (dti && dti->n && dti->v[0] != 0 && strcmp(dti->origin, "default"))
+        vres_info("DtIni=%g not used: the first dt comes from the forces at the start", dti->v[0]);
+    if (vres_params_get(P, "DtAllParticles", 0) != 0)
+        vres_info("DtAllParticles=1 changes nothing here: fixed walls have no acceleration");
+    if (s->gauges_xml) vres_info("gauges are not evaluated during the run: vres-probe reads them from the snapshots");
+    return bad ? -1 : 0;
+}
+
+/* The list of active modules, as printed at start and recorded in each snapshot ("modules");
+ * gpu names the CUDA backend, NULL for the CPU. */
+char *vres_run_modules(const run_cfg *c, const char *gpu)
+{
+    static const char *const ddt_name[] = {"", " ddt-molteni", " ddt-fourtakas"};
+    char ddt[64] = "";
+    if (c->ddt) snprintf(ddt, sizeof ddt, "%s(delta=%g)", ddt_name[c->ddt], c->ddt_delta);
+    char walls[96] = "";
+    if (c->nwall && c->mdbc)
+        snprintf(walls, sizeof walls, " mdbc-walls(slip=%s, %zu with normals, viscobound=%g)",
+                 c->slip == 2 ? "noslip" : c->slip == 3 ? "freeslip" : "vel0", c->nnormal, c->visco_bound);
+    else if (c->nwall) snprintf(walls, sizeof walls, " dbc-walls(viscobound=%g)", c->visco_bound);
+    char visc[64];
+    if (c->visco_kind == VRES_VISC_LAMINAR) snprintf(visc, sizeof visc, "laminar-viscosity(nu=%g m^2/s)", c->visco);
+    else snprintf(visc, sizeof visc, "artificial-viscosity(alpha=%g)", c->visco);
+    char moving[64] = "";
+    if (c->nmoving) snprintf(moving, sizeof moving, " moving-walls(%zu particles)", c->nmoving);
+    char shift[96] = "";
+    if (c->shift)
+        snprintf(shift, sizeof shift, " shifting(%s, coef=%g, tfs=%g)",
+                 c->shift == 1 ? "nobound" : c->shift == 2 ? "nofixed" : "full", c->shift_coef, c->shift_tfs);
+    char per[64] = "";
+    if (c->periodic[0] || c->periodic[1] || c->periodic[2])
+        snprintf(per, sizeof per, " periodic(%s%s%s)", c->periodic[0] ? "x" : "", c->periodic[1] ? "y" : "",
+                 c->periodic[2] ? "z" : "");
+    char step[48] = "symplectic";
+    if (c->verlet) snprintf(step, sizeof step, "verlet(euler every %d)", c->verlet_steps);
+    char dev[96];
+    if (gpu) snprintf(dev, sizeof dev, "%s", gpu);
+    else snprintf(dev, sizeof dev, "cpu-openmp(%d threads)", c->threads);
+    char minf[48] = "";
+    if (c->min_fluid > 0) snprintf(minf, sizeof minf, " minfluidstop(%g)", c->min_fluid);
+    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s %s%s %s%s", c->dim, c->gamma, visc,
+                          walls, moving, ddt, shift, per, step, minf, dev, c->general ? " general-loop" : "");
+}

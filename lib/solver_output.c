@@ -1,0 +1,388 @@
+/* solver_output.c - the run directory of vres-run (see solver_run.h): snapshots and run.tsv
+ * lines, checkpoint.h5, the last good state after a blow-up and its diagnosis, the exclusion
+ * of fluid that leaves the domain (excluded.tsv), the progress line, and what a restart reads
+ * and trims. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../kernels/eos.h"
+#include "fileio.h"
+#include "log.h"
+#include "solver_run.h"
+
+/* Seconds of wall-clock time since an arbitrary origin. */
+double vres_run_wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* 1 when position x (m) lies in the cells' box of c (the test vres_cells_locate makes). */
+int vres_run_in_box(const run_cfg *c, const double x[3])
+{
+    for (int a = 0; a < 3; a++) {
+        if (a == 1 && c->dim == 2) continue;
+        if (!(x[a] >= c->box_lo[a] && (c->periodic[a] ? x[a] < c->box_hi[a] : x[a] <= c->box_hi[a]))) return 0;
+    }
+    return 1;
+}
+
+/* Print the diagnosis of bad particle i (found after step `step` at time t). */
+void vres_run_diagnose(const vres_domain *d, const run_cfg *c, size_t i, long step, double t)
+{
+    const double *x = &d->pos[3 * i];
+    const float *v = &d->vel[3 * i];
+    char what[160];
+    if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2])) snprintf(what, sizeof what, "non-finite position");
+    else if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]))
+        snprintf(what, sizeof what, "non-finite velocity (%g, %g, %g) m/s", v[0], v[1], v[2]);
+    else if (!isfinite(d->rho[i])) snprintf(what, sizeof what, "non-finite density %g", d->rho[i]);
+    else if (!vres_run_in_box(c, x))
+        snprintf(what, sizeof what, "a wall particle left the simulation domain (walls cannot be excluded)");
+    else
+        snprintf(what, sizeof what, "density %g kg/m^3 outside RhopOutMin..RhopOutMax = %g..%g", d->rho[i],
+                 c->rhop_min, c->rhop_max);
+    vres_error("unstable at step %ld, t = %.6g s: %s particle id %llu at (%g, %g, %g) m: %s",
+               step, t, vres_ptype_name(d->type[i]), (unsigned long long)d->id[i], x[0], x[1], x[2], what);
+}
+
+/* The figures of one run.tsv line. */
+typedef struct out_stats {
+    double mass;    /* total fluid mass (kg) */
+    double vmax;    /* largest fluid speed (m/s) */
+    double rho_lo;  /* smallest fluid density (kg/m^3) */
+    double rho_hi;  /* largest fluid density (kg/m^3) */
+    size_t nfluid;  /* fluid particles */
+    size_t nwall;   /* wall particles */
+} out_stats;
+
+/* Fluid mass, largest speed, density range and counts of the domain. */
+static out_stats stats(const vres_domain *d)
+{
+    double m = 0, v2 = 0, lo = INFINITY, hi = -INFINITY;
+    size_t nf = 0;
+#pragma omp parallel for reduction(+ : m, nf) reduction(max : v2, hi) reduction(min : lo) schedule(static)
+    for (size_t i = 0; i < d->n; i++) {
+        if (!vres_type_is_fluid(d->type[i])) continue;
+        nf++;
+        m += d->mass_p[i];
+        const float *v = &d->vel[3 * i];
+        double s2 = (double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2];
+        if (s2 > v2) v2 = s2;
+        if (d->rho[i] < lo) lo = d->rho[i];
+        if (d->rho[i] > hi) hi = d->rho[i];
+    }
+    out_stats o = {m, sqrt(v2), lo, hi, nf, d->n - nf};
+    return o;
+}
+
+/* Write the store's current state as path (pressure refreshed from the density), with what a
+ * restart needs in its parameters. 0 or -1. */
+static int write_snapshot(vres_store *s, const run_cfg *c, const run_resume *r, const char *path, double t, long step)
+{
+    vres_domain *d = &s->dom[0];
+    vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
+    s->time = t;
+    s->step = step;
+    vres_params_set1(&s->params, "run_t0", r->t0, "s", "run");
+    vres_params_set1(&s->params, "run_next_due", r->next_due, "", "run");
+    vres_params_set1(&s->params, "run_next_snap", r->next_snap, "", "run");
+    vres_params_set1(&s->params, "run_nfluid0", r->nfluid0, "", "run");
+    vres_params_set1(&s->params, "run_excluded", r->nexcluded, "", "run");
+    return vres_store_write(s, path);
+}
+
+/* Write snapshot number r->next_snap and its run.tsv line from the backend's state. 0, or -1
+ * after printing why. */
+int vres_run_output(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, const run_files *f,
+                    run_clock *clk, double t, long step, double dt)
+{
+    /* the rate counts the stepping since the previous output, not the writing of snapshots */
+    double now = vres_run_wall_now();
+    double steps_s = now > clk->last ? (double)(step - clk->last_step) / (now - clk->last) : 0;
+    size_t pairs = b->count_pairs(b);
+    if (b->download(b, &s->dom[0]) != 0) return -1;
+    r->next_snap++;
+    char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
+    int rc = write_snapshot(s, c, r, path, t, step);
+    free(path);
+    if (rc) return -1;
+    out_stats st = stats(&s->dom[0]);
+    /* interactions: ordered pairs within 2h, once per force evaluation (two per Symplectic step) */
+    double passes = c->verlet ? 1 : 2;
+    fprintf(f->tsv, "%.9g\t%ld\t%.6g\t%zu\t%zu\t%.9g\t%.6g\t%.7g\t%.7g\t%.3f\t%.4g\t%.0f\t%zu\t%.4g\n", t, step, dt,
+            st.nfluid, st.nwall, st.mass, st.vmax, st.rho_lo, st.rho_hi, now - clk->start,
+            steps_s * (double)s->dom[0].n, r->nexcluded, pairs, steps_s * passes * (double)pairs);
+    fflush(f->tsv);
+    if (ferror(f->tsv)) {
+        vres_error("%s/run.tsv: write failed", f->dir);
+        return -1;
+    }
+    vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3",
+               r->next_snap - 1, t, step, dt, st.vmax, st.rho_lo, st.rho_hi);
+    clk->last = vres_run_wall_now();
+    clk->last_step = step;
+    return 0;
+}
+
+/* Write RUNDIR/checkpoint.h5 (atomically) from the backend's state. 0 or -1. */
+int vres_run_checkpoint(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+                        run_clock *clk, double t, long step)
+{
+    if (b->download(b, &s->dom[0]) != 0) return -1;
+    char *path = vres_xasprintf("%s/checkpoint.h5", dir);
+    int rc = write_snapshot(s, c, r, path, t, step);
+    if (!rc) vres_debug("checkpoint at t = %.6g s, step %ld: %s", t, step, path);
+    free(path);
+    clk->last_ckpt = vres_run_wall_now();
+    return rc;
+}
+
+/* The progress line on a terminal: rewritten in place at most twice a second while the run
+ * goes on (stderr only, never with -q or when stderr is not a terminal); done = 1 ends it. */
+void vres_run_progress(const run_cfg *c, const run_clock *clk, double t0, double t, long step, double dt, int done)
+{
+    static double last;        /* wall time of the last line printed (s) */
+    static int shown;          /* 1 once a line is on the screen */
+    if (vres_verbosity < 0 || !isatty(2)) return;
+    double now = vres_run_wall_now();
+    if (done) {
+        if (shown) fputc('\n', stderr);
+        shown = 0;
+        return;
+    }
+    if (now - last < 0.5) return;
+    last = now;
+    double frac = c->tmax > t0 ? (t - t0) / (c->tmax - t0) : 1, spent = now - clk->start;
+    double eta = frac > 0 ? spent * (1 - frac) / frac : 0;
+    fprintf(stderr, "\r%s: t %.5g of %.5g s (%.1f%%), step %ld, dt %.3g s, %.0f s left   ", vres_progname, t,
+            c->tmax, 100 * frac, step, dt, eta);
+    shown = 1;
+}
+
+/* Write the store's state (host copy, at time t, step) as DIR/snap_last_good.h5 and say where.
+ * Returns VRES_RUN_UNSTABLE, or VRES_RUN_FAIL when the write fails. */
+static int write_last_good(vres_store *s, const run_cfg *c, const run_resume *r, const char *dir, double t, long step)
+{
+    char *path = vres_xasprintf("%s/snap_last_good.h5", dir);
+    int rc = write_snapshot(s, c, r, path, t, step);
+    if (!rc)
+        vres_error("last good state (step %ld, t = %.6g s) written to %s; it restarts with --restart", step, t, path);
+    free(path);
+    return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
+}
+
+/* Stop after a blow-up: diagnose slot bad (the state after the failed step), put the step-start
+ * state (the last good one) back, write it as snap_last_good.h5 and say where. Returns
+ * VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
+int vres_run_stop_unstable(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+                           size_t bad, long step, double t, double t0, long step0)
+{
+    vres_domain *d = &s->dom[0];
+    if (bad != (size_t)-1 && b->download(b, d) == 0) vres_run_diagnose(d, c, bad, step, t);
+    b->restore_start(b);
+    if (b->download(b, d) != 0) return VRES_RUN_FAIL;
+    return write_last_good(s, c, r, dir, t0, step0);
+}
+/* Remove the fluid particles that left the simulation domain (finite state, outside the cells'
+ * box), each recorded in RUNDIR/excluded.tsv with the time, step and reason. A wall outside
+ * the box is not removed: returns its slot (the run must stop). Returns (size_t)-1 when done,
+ * (size_t)-2 after printing why the record could not be written. */
+static size_t exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+                          long step)
+{
+    vres_domain *d = &s->dom[0];
+    if (b->download(b, d) != 0) return (size_t)-2;
+    for (size_t i = 0; i < d->n; i++) /* a wall outside stops the run: find it before changing anything */
+        if (!vres_type_acts_fluid(d->type[i]) && !vres_run_in_box(c, &d->pos[3 * i])) return i;
+    if (!f->excl) { /* appended to, after a restart's earlier lines */
+        char *path = vres_xasprintf("%s/excluded.tsv", f->dir);
+        f->excl = fopen(path, "a");
+        if (!f->excl) vres_error("%s: cannot write: %s", path, strerror(errno));
+        free(path);
+        if (!f->excl) return (size_t)-2;
+        if (fseek(f->excl, 0, SEEK_END) == 0 && ftell(f->excl) == 0)
+            fprintf(f->excl, "# time_s\tstep\tid\ttype\tmk\tx_m\ty_m\tz_m\tvx_m_s\tvy_m_s\tvz_m_s\trho_kg_m3\treason\n");
+    }
+    double *xref = c->nmoving ? vres_xmalloc(3 * d->n * sizeof *xref) : NULL;
+    if (xref) b->get_xref(b, xref);
+    size_t k = 0, nex = 0;
+    char ids[96] = "";
+    for (size_t i = 0; i < d->n; i++) {
+        if (vres_run_in_box(c, &d->pos[3 * i])) {
+            if (k != i) {
+                memcpy(&d->pos[3 * k], &d->pos[3 * i], 3 * sizeof *d->pos);
+                memcpy(&d->vel[3 * k], &d->vel[3 * i], 3 * sizeof *d->vel);
+                memcpy(&d->normal[3 * k], &d->normal[3 * i], 3 * sizeof *d->normal);
+                if (xref) memcpy(&xref[3 * k], &xref[3 * i], 3 * sizeof *xref);
+                d->rho[k] = d->rho[i], d->press[k] = d->press[i], d->mass_p[k] = d->mass_p[i];
+                d->type[k] = d->type[i], d->mk[k] = d->mk[i], d->id[k] = d->id[i];
+            }
+            k++;
+            continue;
+        }
+        const double *x = &d->pos[3 * i];
+        const float *v = &d->vel[3 * i];
+        fprintf(f->excl, "%.9g\t%ld\t%llu\t%s\t%d\t%.9g\t%.9g\t%.9g\t%.6g\t%.6g\t%.6g\t%.7g\tleft the simulation domain\n",
+                t, step, (unsigned long long)d->id[i], vres_ptype_name(d->type[i]), d->mk[i], x[0], x[1], x[2], v[0],
+                v[1], v[2], d->rho[i]);
+        if (nex < 4) /* the first few ids for the message */
+            snprintf(ids + strlen(ids), sizeof ids - strlen(ids), "%s%llu", nex ? ", " : "",
+                     (unsigned long long)d->id[i]);
+        nex++;
+    }
+    d->n = k;
+    r->nexcluded += (double)nex;
+    vres_info("t = %.6g s, step %ld: %zu fluid particle%s left the simulation domain and %s excluded (id %s%s; "
+              "recorded in %s/excluded.tsv)", t, step, nex, nex == 1 ? "" : "s", nex == 1 ? "is" : "are", ids,
+              nex > 4 ? ", ..." : "", f->dir);
+    fflush(f->excl);
+    int bad = ferror(f->excl) || b->upload(b, d, xref) != 0;
+    free(xref);
+    if (bad) {
+        vres_error("%s/excluded.tsv: write failed", f->dir);
+        return (size_t)-2;
+    }
+    return (size_t)-1;
+}
+
+/* After a step (or half step) that ended at time t: stop on a fatal particle, exclude the
+ * fluid that left the domain, and stop when too little fluid is left. Returns VRES_RUN_OK to
+ * go on, or the run's exit status after printing why. */
+int vres_run_after_step(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+                        long step, double t0, long step0)
+{
+    size_t nout, bad = b->check(b, &nout);
+    if (bad == (size_t)-1 && nout) {
+        bad = exclude_out(s, b, c, r, f, t, step);
+        if (bad == (size_t)-2) return VRES_RUN_FAIL;
+        if (bad != (size_t)-1) return vres_run_stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
+        size_t nf = stats(&s->dom[0]).nfluid;
+        if (nf == 0 || (c->min_fluid > 0 && nf < c->min_fluid * r->nfluid0)) {
+            vres_error("unstable at step %ld, t = %.6g s: %zu fluid particles left, below MinFluidStop=%g of the %.0f "
+                       "at the start (%.0f excluded)", step, t, nf, c->min_fluid, r->nfluid0, r->nexcluded);
+            /* the state after the exclusions is sound: it is the last good one */
+            return write_last_good(s, c, r, f->dir, t, step);
+        }
+    }
+    if (bad != (size_t)-1) return vres_run_stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
+    return VRES_RUN_OK;
+}
+
+/* Keep the lines of text file path that are comments or whose column col (1-based, a step
+ * number) is at most step; drop the rest (a restart rewrites them). Atomic. 0, or -1 after
+ * printing why. A missing file is fine. */
+static int truncate_table(const char *path, int col, long step)
+{
+    FILE *in = fopen(path, "r");
+    if (!in) {
+        if (errno == ENOENT) return 0;
+        vres_error("%s: cannot read: %s", path, strerror(errno));
+        return -1;
+    }
+    vres_outfile out;
+    if (vres_out_begin(&out, path) != 0) {
+        fclose(in);
+        return -1;
+    }
+    FILE *o = fopen(out.tmp, "w");
+    if (!o) {
+        vres_error("%s: cannot write: %s", out.tmp, strerror(errno));
+        fclose(in);
+        vres_out_abort(&out);
+        return -1;
+    }
+    char *line = NULL;
+    size_t cap = 0;
+    while (getline(&line, &cap, in) > 0) {
+        const char *p = line;
+        for (int k = 1; k < col && p; k++) p = strchr(p, '\t') ? strchr(p, '\t') + 1 : NULL;
+        if (line[0] == '#' || (p && strtol(p, NULL, 10) <= step)) fputs(line, o);
+    }
+    free(line);
+    fclose(in);
+    if (fclose(o) != 0) {
+        vres_error("%s: write failed", out.tmp);
+        vres_out_abort(&out);
+        return -1;
+    }
+    return vres_out_commit(&out);
+}
+
+/* Make the run directory (and parents) and check it can take the run: a new run needs one
+ * without run.tsv; a restart from the state at step `step` with next snapshot number
+ * next_snap keeps what came before and removes what the restart rewrites (later snapshots,
+ * run.tsv and excluded.tsv lines, snap_last_good.h5). 0, or -1 after printing why. Nothing is
+ * created or removed when the path cannot be a run directory. */
+int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap)
+{
+    struct stat st;
+    if (stat(dir, &st) != 0) return vres_mkdirs(dir);
+    if (!S_ISDIR(st.st_mode)) {
+        vres_error("%s: exists and is not a directory", dir);
+        return -1;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        vres_error("%s: directory not writable: %s", dir, strerror(errno));
+        return -1;
+    }
+    char *tsv = vres_xasprintf("%s/run.tsv", dir);
+    int taken = access(tsv, F_OK) == 0;
+    if (taken && !restart) {
+        vres_error("%s: already holds a run (run.tsv): remove it, choose another -o, or continue it with --restart "
+                   "%s/snap_NNNNN.h5", dir, dir);
+        free(tsv);
+        return -1;
+    }
+    int rc = 0;
+    if (restart) {
+        char *ex = vres_xasprintf("%s/excluded.tsv", dir), *lg = vres_xasprintf("%s/snap_last_good.h5", dir);
+        rc = truncate_table(tsv, 2, step) || truncate_table(ex, 2, step);
+        if (!rc && unlink(lg) == 0) vres_info("removed %s (the restart replaces it)", lg);
+        int removed = 0;
+        for (int k = next_snap; !rc; k++) {
+            char *snap = vres_xasprintf("%s/snap_%05d.h5", dir, k);
+            int gone = unlink(snap) == 0;
+            free(snap);
+            if (!gone) break;
+            removed++;
+        }
+        if (removed)
+            vres_info("removed snap_%05d.h5 .. snap_%05d.h5 and the later lines of run.tsv (the restart rewrites them)",
+                      next_snap, next_snap + removed - 1);
+        free(ex);
+        free(lg);
+    }
+    free(tsv);
+    return rc;
+}
+
+/* What a restart reads from its snapshot into r: 0, or -1 after printing why (not a
+ * snapshot of vres-run, or nothing left to run). */
+int vres_run_read_resume(const vres_store *s, const run_cfg *c, run_resume *r)
+{
+    const char *names[] = {"run_t0", "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded"};
+    double v[5];
+    for (int k = 0; k < 5; k++) {
+        const vres_param *p = vres_params_find(&s->params, names[k]);
+        if (!p || p->n < 1) {
+            vres_error("the store has no parameter %s: --restart needs a snapshot or checkpoint.h5 written by "
+                       "vres-run (run the store without --restart to start a run)", names[k]);
+            return -1;
+        }
+        v[k] = p->v[0];
+    }
+    r->t0 = v[0], r->next_due = (int)v[1], r->next_snap = (int)v[2], r->nfluid0 = v[3], r->nexcluded = v[4];
+    if (!(s->time < c->tmax * (1 - 1e-12))) {
+        vres_error("the snapshot is at t = %g s, at or past the end time %g s: give a later --tmax", s->time, c->tmax);
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,95 @@
+/* solver_run.h - what the files of the time loop share (internal to libvres): the run's
+ * configuration is read and checked in solver_config.c; the run directory's output (snapshots,
+ * run.tsv, checkpoints, restarts, the exclusion record, the diagnosis of a blow-up) is written
+ * by solver_output.c; the step sequence that calls both runs in solver.c. */
+#ifndef VRES_SOLVER_RUN_H
+#define VRES_SOLVER_RUN_H
+
+#include <stdio.h>
+
+#include "solver.h"
+#include "solver_int.h"
+#include "store.h"
+
+/* What a restart takes from the snapshot it starts from (parameters the solver writes into
+ * every snapshot, origin "run"). */
+typedef struct run_resume {
+    double t0;          /* time the output schedule counts from: output k is due at t0 + k tout (s) */
+    int next_due;       /* k of the next output due */
+    int next_snap;      /* number of the next snapshot file to write */
+    double nfluid0;     /* fluid particles at the run's start (for MinFluidStop) */
+    double nexcluded;   /* particles excluded so far */
+} run_resume;
+
+/* The run directory's files. */
+typedef struct run_files {
+    const char *dir;    /* the run directory */
+    FILE *tsv;          /* run.tsv, open for appending */
+    FILE *excl;         /* excluded.tsv, opened at the first exclusion (NULL until then) */
+} run_files;
+
+/* The run's progress between outputs. */
+typedef struct run_clock {
+    double start;       /* wall time at the start of the time loop (s) */
+    double last;        /* wall time at the previous output (s) */
+    long last_step;     /* step of the previous output */
+    double last_ckpt;   /* wall time of the last checkpoint (or the start) (s) */
+} run_clock;
+
+/* ---- solver_config.c: the configuration ---- */
+
+/* Read and check every parameter of the store into c; 0, or -1 after printing each problem. */
+int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c);
+
+/* The list of active modules, as printed at start and recorded in each snapshot ("modules");
+ * gpu names the CUDA backend, NULL for the CPU. */
+char *vres_run_modules(const run_cfg *c, const char *gpu);
+
+/* ---- solver_output.c: the run directory ---- */
+
+/* Seconds of wall-clock time since an arbitrary origin. */
+double vres_run_wall_now(void);
+
+/* 1 when position x (m) lies in the cells' box of c (the test vres_cells_locate makes). */
+int vres_run_in_box(const run_cfg *c, const double x[3]);
+
+/* Print the diagnosis of bad particle i (found after step `step` at time t). */
+void vres_run_diagnose(const vres_domain *d, const run_cfg *c, size_t i, long step, double t);
+
+/* Write snapshot number r->next_snap and its run.tsv line from the backend's state. 0, or -1
+ * after printing why. */
+int vres_run_output(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, const run_files *f,
+                    run_clock *clk, double t, long step, double dt);
+
+/* Write RUNDIR/checkpoint.h5 (atomically) from the backend's state. 0 or -1. */
+int vres_run_checkpoint(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+                        run_clock *clk, double t, long step);
+
+/* The progress line on a terminal: rewritten in place at most twice a second while the run
+ * goes on (stderr only, never with -q or when stderr is not a terminal); done = 1 ends it. */
+void vres_run_progress(const run_cfg *c, const run_clock *clk, double t0, double t, long step, double dt, int done);
+
+/* Stop after a blow-up: diagnose slot bad (the state after the failed step), put the step-start
+ * state (the last good one) back, write it as snap_last_good.h5 and say where. Returns
+ * VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
+int vres_run_stop_unstable(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+                           size_t bad, long step, double t, double t0, long step0);
+
+/* After a step (or half step) that ended at time t: stop on a fatal particle, exclude the
+ * fluid that left the domain, and stop when too little fluid is left. Returns VRES_RUN_OK to
+ * go on, or the run's exit status after printing why. */
+int vres_run_after_step(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+                        long step, double t0, long step0);
+
+/* Make the run directory (and parents) and check it can take the run: a new run needs one
+ * without run.tsv; a restart from the state at step `step` with next snapshot number
+ * next_snap keeps what came before and removes what the restart rewrites (later snapshots,
+ * run.tsv and excluded.tsv lines, snap_last_good.h5). 0, or -1 after printing why. Nothing is
+ * created or removed when the path cannot be a run directory. */
+int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap);
+
+/* What a restart reads from its snapshot into r: 0, or -1 after printing why (not a
+ * snapshot of vres-run, or nothing left to run). */
+int vres_run_read_resume(const vres_store *s, const run_cfg *c, run_resume *r);
+
+#endif

@@ -1,0 +1,276 @@
+/* test_buffer.c - buffer particles (variable resolution's interpolated band, kernels/ptype.h) in
+ * the single-resolution physics: a 2D block of fluid on DBC walls with one buffer particle
+ * in its bottom row, next to the walls.
+ *
+ *   - In the interaction (3D loop, 2D specialised loop, general loops) the buffer particle gets
+ *     no rates of its own, and every other particle, fluid or wall, gets the very rates (bit
+ *     for bit) it gets when that particle is fluid: the buffer is a fluid neighbour. Made a
+ *     fixed wall instead, the same particle changes its neighbours' rates: so the buffer is
+ *     not treated as a wall.
+ *   - Over a Symplectic step and a Verlet step of the CPU backend (the time loop's sequence of
+ *     backend operations) the buffer particle keeps its velocity and density bit for bit and
+ *     moves by v dt; after the predictor (whose forces come from the same state) every other
+ *     particle is where it is when the buffer particle is fluid. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../kernels/eos.h"
+#include "../kernels/sph.h"
+#include "cells.h"
+#include "check_run.h"
+#include "solver_int.h"
+#include "store.h"
+
+#define DP 0.01  /* particle spacing (m) */
+#define NX 12    /* fluid columns */
+#define NZ 10    /* fluid rows */
+#define NW 3     /* wall layers below */
+#define JX 6     /* column of the buffer particle (bottom fluid row) */
+
+/* The run configuration of the block: 2D, DBC walls, artificial viscosity, Molteni's density
+ * diffusion (which fluid-wall pairs leave out: a wall neighbour shows in the density rate). */
+static run_cfg config(size_t nfluid, size_t nwall)
+{
+    run_cfg c;
+    memset(&c, 0, sizeof c);
+    c.dim = 2;
+    c.h = 1.2 * sqrt(2.0) * DP;
+    c.rho0 = 1000;
+    c.gamma = 7;
+    c.cs0 = 20;
+    c.B = c.cs0 * c.cs0 * c.rho0 / c.gamma;
+    c.cfl = 0.2;
+    c.visco_kind = VRES_VISC_ARTIFICIAL;
+    c.visco = 0.05;
+    c.visco_bound = 1;
+    c.ddt = VRES_DDT_MOLTENI;
+    c.ddt_delta = 0.1;
+    c.g[2] = -9.81;
+    c.tmax = c.tout = 1;
+    c.dtmin = 1e-9;
+    c.rhop_min = 700, c.rhop_max = 1300;
+    double lo[3] = {-0.05, 0, -0.06}, hi[3] = {0.17, 0, 0.15};
+    memcpy(c.box_lo, lo, sizeof lo);
+    memcpy(c.box_hi, hi, sizeof hi);
+    c.nfluid = nfluid;
+    c.nwall = nwall;
+    c.slip = 1;
+    c.verlet_steps = 40;
+    c.threads = 1;
+    return c;
+}
+
+/* The block into a new store's domain, the particle with id `jid` of type jtype (the others
+ * fluid above z = 0, fixed walls below), jittered positions, random velocities and densities
+ * (the same for every jtype: one seed). Returns the store; *jid gets the special particle's id. */
+static vres_store *block(int jtype, uint64_t *jid)
+{
+    vres_store *s = vres_store_new();
+    s->dim = 2;
+    vres_domain *d = vres_store_add_domain(s);
+    d->dp = DP;
+    d->h = 1.2 * sqrt(2.0) * DP;
+    srand(11);
+    for (int i = 0; i < NX; i++)
+        for (int k = -NW; k < NZ; k++) {
+            double jit = k < 0 ? 0 : 0.2 * DP;
+            double x[3] = {(i + 0.5) * DP + jit * (rand() / (double)RAND_MAX - 0.5), 0,
+                           (k + 0.5) * DP + jit * (rand() / (double)RAND_MAX - 0.5)};
+            int t = k < 0 ? VRES_FIXED : VRES_FLUID;
+            if (i == JX && k == 0) t = jtype;
+            size_t j = vres_domain_push(d, x, t, 0);
+            d->id[j] = j;
+            d->rho[j] = (float)(1000 + 4 * rand() / (double)RAND_MAX);
+            d->mass_p[j] = 1000 * DP * DP;
+            if (k >= 0) d->vel[3 * j] = (float)(0.2 * rand() / (double)RAND_MAX - 0.1),
+                        d->vel[3 * j + 2] = (float)(0.2 * rand() / (double)RAND_MAX - 0.1);
+            if (i == JX && k == 0) {
+                d->vel[3 * j] = 0.3f, d->vel[3 * j + 2] = -0.2f, d->rho[j] = 1004.5f;
+                *jid = j;
+            }
+        }
+    return s;
+}
+
+/* The slot of the particle with id `id` in d. */
+static size_t slot_of(const vres_domain *d, uint64_t id)
+{
+    for (size_t i = 0; i < d->n; i++)
+        if (d->id[i] == id) return i;
+    ck_abort_msg("no particle with id %llu", (unsigned long long)id);
+    return 0;
+}
+
+/* The rates of one interaction loop: ace [3n], ar [n], visc [n]. */
+typedef struct rates {
+    double *ace, *ar, *visc;
+} rates;
+
+/* The rates of d (sorted by g) with loop kind k: 0 the 3D DBC variant, 1 the 2D DBC variant,
+ * 2 the 3D general loop, 3 the 2D general loop. */
+static rates interact(int k, vres_domain *d, const vres_cells *g, const vres_sph_consts *C)
+{
+    size_t n = d->n;
+    rates r = {calloc(3 * n, sizeof(double)), calloc(n, sizeof(double)), calloc(n, sizeof(double))};
+    double *x = malloc(2 * n * sizeof *x), *ir = malloc(n * sizeof *ir);
+    float *v = malloc(2 * n * sizeof *v);
+    for (size_t i = 0; i < n; i++)
+        x[i] = d->pos[3 * i], x[n + i] = d->pos[3 * i + 2], v[i] = d->vel[3 * i], v[n + i] = d->vel[3 * i + 2],
+        ir[i] = 1.0 / d->rho[i];
+    vres_sph_2d P = {x, x + n, v, v + n, d->rho, d->press, ir, d->mass_p, d->type};
+    if (k == 0) vres_sph_dbc_molteni_cpu(n, g, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, r.ace, r.ar,
+                                         r.visc);
+    else if (k == 1) vres_sph2d_dbc_molteni_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL);
+    else if (k == 2)
+        vres_sph_general_cpu(n, g, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, r.ace, r.ar, r.visc, NULL,
+                             VRES_DDT_MOLTENI, 1, VRES_VISC_ARTIFICIAL, 0);
+    else
+        vres_sph2d_general_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL, VRES_DDT_MOLTENI, 1,
+                               VRES_VISC_ARTIFICIAL, 0);
+    free(x), free(ir), free(v);
+    return r;
+}
+
+START_TEST(interaction_feels_buffer_as_fluid)
+{
+    static const int types[3] = {VRES_BUFFER, VRES_FLUID, VRES_FIXED};
+    vres_store *s[3];
+    vres_cells g[3];
+    uint64_t jid = 0;
+    const run_cfg c = config(0, 0);
+    const vres_sph_consts C = vres_run_consts(&c);
+    for (int t = 0; t < 3; t++) {
+        s[t] = block(types[t], &jid);
+        vres_domain *d = &s[t]->dom[0];
+        ck_assert_int_eq(vres_cells_init(&g[t], 2, 2 * c.h, c.box_lo, c.box_hi, NULL), 0);
+        vres_cells_build(&g[t], d->pos, d->n);
+        ck_assert_int_eq(vres_cells_reorder(&g[t], d), 0);
+        vres_eos_loop_cpu(d->n, d->rho, d->press, c.rho0, c.B, c.gamma);
+    }
+    const vres_domain *d = &s[0]->dom[0];
+    size_t n = d->n, j = slot_of(d, jid);
+    for (int k = 0; k < 4; k++) {
+        rates r[3];
+        for (int t = 0; t < 3; t++) r[t] = interact(k, &s[t]->dom[0], &g[t], &C);
+        /* the buffer particle's own rates are discarded */
+        ck_assert(r[0].ace[3 * j] == 0 && r[0].ace[3 * j + 1] == 0 && r[0].ace[3 * j + 2] == 0);
+        ck_assert(r[0].ar[j] == 0 && r[0].visc[j] == 0);
+        ck_assert(r[1].ar[j] != 0); /* as fluid it has some: the zeros above mean something */
+        size_t wall_differs = 0, fluid_differs = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (i == j) continue;
+            /* every other particle feels the buffer as the fluid particle it would be */
+            for (int q = 0; q < 3; q++) ck_assert(r[0].ace[3 * i + q] == r[1].ace[3 * i + q]);
+            ck_assert(r[0].ar[i] == r[1].ar[i] && r[0].visc[i] == r[1].visc[i]);
+            /* and not as the wall it would be */
+            int differs = r[0].ar[i] != r[2].ar[i] || r[0].ace[3 * i] != r[2].ace[3 * i];
+            if (d->type[i] == VRES_FIXED) wall_differs += differs;
+            else fluid_differs += differs;
+        }
+        ck_assert_msg(wall_differs > 0 && fluid_differs > 0, "loop %d: %zu walls, %zu fluid particles feel a wall",
+                      k, wall_differs, fluid_differs);
+        for (int t = 0; t < 3; t++) free(r[t].ace), free(r[t].ar), free(r[t].visc);
+    }
+    for (int t = 0; t < 3; t++) vres_cells_free(&g[t]), vres_store_free(s[t]);
+}
+END_TEST
+
+/* One step of the time loop's sequence on the CPU backend over store s (Symplectic, or Verlet
+ * when c->verlet): time step dt (s). With after_predict not NULL, the Symplectic step stops
+ * after the predictor and the host state is copied into *after_predict's arrays. */
+static void step(vres_store *s, const run_cfg *c, double dt, vres_domain *after_predict)
+{
+    vres_backend b;
+    vres_domain *d = &s->dom[0];
+    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, c), 0);
+    double visc;
+    ck_assert_int_eq(b.sort(&b, 0), 0);
+    b.save_start(&b);
+    double amax = b.forces(&b, 0, &visc);
+    ck_assert(amax > 0 && isfinite(amax));
+    if (c->verlet) {
+        b.verlet(&b, dt, 0, 0);
+    } else {
+        b.predict(&b, dt);
+        b.wrap(&b);
+        if (after_predict) {
+            ck_assert_int_eq(b.download(&b, d), 0);
+            *after_predict = *d;
+            b.close(&b);
+            return;
+        }
+        ck_assert_int_eq(b.sort(&b, 1), 0);
+        b.forces(&b, 0, &visc);
+        b.correct(&b, dt, 0);
+        b.wrap(&b);
+        b.mdbc(&b);
+    }
+    size_t nout;
+    ck_assert_uint_eq(b.check(&b, &nout), (size_t)-1);
+    ck_assert_uint_eq(nout, 0);
+    ck_assert_int_eq(b.download(&b, d), 0);
+    b.close(&b);
+}
+
+START_TEST(buffer_is_advected_over_a_step)
+{
+    const double dt = 2e-4;
+    for (int verlet = 0; verlet < 2; verlet++) {
+        uint64_t jid = 0;
+        vres_store *s = block(VRES_BUFFER, &jid);
+        vres_domain *d = &s->dom[0];
+        run_cfg c = config(vres_domain_count(d, VRES_FLUID), vres_domain_count(d, VRES_FIXED));
+        c.verlet = verlet;
+        size_t j = slot_of(d, jid);
+        double x0[3] = {d->pos[3 * j], d->pos[3 * j + 1], d->pos[3 * j + 2]};
+        float v0[3] = {d->vel[3 * j], d->vel[3 * j + 1], d->vel[3 * j + 2]}, rho0 = d->rho[j];
+        step(s, &c, dt, NULL);
+        j = slot_of(d, jid); /* the sort moved it */
+        for (int q = 0; q < 3; q++) {
+            ck_assert(d->vel[3 * j + q] == v0[q]);                /* velocity unchanged */
+            ck_assert(d->pos[3 * j + q] == x0[q] + dt * v0[q]);   /* x += v dt */
+        }
+        ck_assert(d->rho[j] == rho0); /* density unchanged */
+        ck_assert_int_eq(d->type[j], VRES_BUFFER);
+        vres_store_free(s);
+    }
+}
+END_TEST
+
+START_TEST(fluid_moves_as_next_to_fluid)
+{
+    uint64_t jid = 0;
+    vres_store *sb = block(VRES_BUFFER, &jid), *sf = block(VRES_FLUID, &jid);
+    const vres_domain *d = &sb->dom[0];
+    run_cfg c = config(vres_domain_count(d, VRES_FLUID), vres_domain_count(d, VRES_FIXED));
+    vres_domain pb, pf;
+    step(sb, &c, 2e-4, &pb);
+    step(sf, &c, 2e-4, &pf);
+    ck_assert_uint_eq(pb.n, pf.n);
+    size_t same = 0;
+    for (size_t i = 0; i < pb.n; i++) {
+        ck_assert(pb.id[i] == pf.id[i]); /* the same cell order */
+        if (pb.id[i] == jid) continue;
+        for (int q = 0; q < 3; q++)
+            ck_assert(pb.pos[3 * i + q] == pf.pos[3 * i + q] && pb.vel[3 * i + q] == pf.vel[3 * i + q]);
+        ck_assert(pb.rho[i] == pf.rho[i]);
+        same++;
+    }
+    ck_assert_uint_eq(same, pb.n - 1);
+    vres_store_free(sb);
+    vres_store_free(sf);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("buffer");
+    TCase *tc = tcase_create("buffer");
+    tcase_add_test(tc, interaction_feels_buffer_as_fluid);
+    tcase_add_test(tc, buffer_is_advected_over_a_step);
+    tcase_add_test(tc, fluid_moves_as_next_to_fluid);
+    suite_add_tcase(s, tc);
+    return vres_check_run(s);
+}
