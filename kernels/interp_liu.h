@@ -72,8 +72,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../lib/cells.h"
+#include "cells.h"
 #include "device.h"
+#include "ptype.h"
 #include "wendland.h"
 
 #define VRES_LIU_COND_MAX 100.0   /* largest kappa = cond_inf(Ah) for the correction (DualSPHysics' VResThreshold) */
@@ -149,7 +150,7 @@ VRES_HD static inline void vres_liu_gather(vres_liu_acc *s, const vres_cells *g,
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h;
     for (int c = 0; c < m; c++)
         for (size_t b = nb[c].begin; b < nb[c].end; b++) {
-            const int t = type[b], fluid = t == 0, wall = t >= 2 && t <= 4; /* VRES_FLUID; FIXED..FLOATING */
+            const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
             if (!fluid && !wall) continue;
             double d[3];
             for (int ax = 0; ax < 3; ax++) d[ax] = pos[3 * b + ax] + nb[c].shift[ax] - x[ax];
