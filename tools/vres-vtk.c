@@ -95,7 +95,7 @@ static int read_options(const vres_cli *cli, job *J)
     if (dom) {
         long k = strtol(dom, NULL, 10); /* an integer: the parser checked it */
         if (k < 0 || k > 1000000) {
-            vres_error("--domain %s: a domain index is 0 (the root) or more", dom);
+            vres_error("--domain %s: not a domain index (0 the root, 1, 2... the sub-domains)", dom);
             return -1;
         }
         J->vo.domain = (int)k;
@@ -157,7 +157,7 @@ static int prepare_outdir(job *J)
     return 0;
 }
 
-/* With -v: what was written from each domain of s, by type ("D1: 1200 fluid, 80 fixed"). */
+/* With -v: what was written from each domain of s, by type ("  D1 (dp 0.01 m): 1200 fluid, 80 fixed"). */
 static void debug_counts(const job *J, const vres_store *s)
 {
     if (vres_verbosity < 1) return;
