@@ -1,6 +1,6 @@
 /* forces.c - force and moment of the fluid on the wall particles of one mkbound (see forces.h):
- * per domain, a cell list over its fluid particles, then for each body particle the pair
- * terms of kernels/sph.h summed over its fluid neighbours. */
+ * per domain, a cell list over the fluid particles it owns, then for each body particle the
+ * pair terms of kernels/sph.h summed over those fluid neighbours. */
 #include "forces.h"
 
 #include <math.h>
@@ -13,6 +13,7 @@
 #include "../kernels/wendland.h"
 #include "cells.h"
 #include "log.h"
+#include "owner.h"
 
 /* The interaction settings the store's parameters give, shared by its domains. */
 typedef struct force_cfg {
@@ -225,29 +226,39 @@ static vres_sph_consts domain_consts(const vres_domain *d, const force_cfg *c)
     return C;
 }
 
-/* Add the load of domain d's fluid on its particles of the body to L (centre already set). 0,
- * or -1 after printing why. */
-static int domain_load(const vres_store *s, const vres_domain *d, int mkbound, const force_cfg *c, vres_body_load *L)
+/* Add the load of domain k's fluid on its particles of the body to L (centre already set):
+ * the fluid particles k owns (lib/owner.h) against every body particle of k, owned or not.
+ * 0, or -1 after printing why. */
+static int domain_load(const vres_store *s, size_t k, int mkbound, const force_cfg *c, vres_body_load *L)
 {
+    const vres_domain *d = &s->dom[k];
+    uint8_t *own = vres_owner_mask(s, k);
     size_t nf = 0, nb = 0;
     for (size_t i = 0; i < d->n; i++) {
-        nf += d->type[i] == VRES_FLUID;
-        nb += vres_ptype_is_wall(d->type[i]) && d->mk[i] == mkbound;
+        nf += d->type[i] == VRES_FLUID && own[i];
+        if (vres_ptype_is_wall(d->type[i]) && d->mk[i] == mkbound) {
+            nb++;
+            L->nbody += own[i];
+            L->nshared += !own[i];
+        }
     }
-    if (!nb) return 0;
+    if (!nb || !nf) { /* no body here, or a dry one: no force */
+        L->ndomains += nb > 0;
+        free(own);
+        return 0;
+    }
     L->ndomains++;
-    L->nbody += nb;
-    if (!nf) return 0; /* a dry body: no force */
     size_t *fidx = vres_xmalloc(nf * sizeof *fidx), *bidx = vres_xmalloc(nb * sizeof *bidx);
     double *bpos = vres_xmalloc(3 * nb * sizeof *bpos);
     nf = nb = 0;
     for (size_t i = 0; i < d->n; i++) {
-        if (d->type[i] == VRES_FLUID) fidx[nf++] = i;
+        if (d->type[i] == VRES_FLUID && own[i]) fidx[nf++] = i;
         else if (vres_ptype_is_wall(d->type[i]) && d->mk[i] == mkbound) {
             memcpy(&bpos[3 * nb], &d->pos[3 * i], 3 * sizeof *bpos);
             bidx[nb++] = i;
         }
     }
+    free(own);
     double lo[3], hi[3];
     double *fpos = vres_xmalloc(3 * nf * sizeof *fpos);
     for (size_t j = 0; j < nf; j++) memcpy(&fpos[3 * j], &d->pos[3 * fidx[j]], 3 * sizeof *fpos);
@@ -335,6 +346,6 @@ int vres_forces_compute(const vres_store *s, int mkbound, const double *centre, 
         default_centre(s, mkbound, L);
     }
     for (size_t k = 0; k < s->ndomains; k++)
-        if (domain_load(s, &s->dom[k], mkbound, &c, L) != 0) return -1;
+        if (domain_load(s, k, mkbound, &c, L) != 0) return -1;
     return 0;
 }

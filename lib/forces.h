@@ -8,11 +8,24 @@
  * the Wendland kernel and h of the particle's domain. Since each pair term is the exact opposite
  * of the one the solver gives the fluid particle, this is the reaction of the body on the fluid
  * with its sign changed; its weight and wall-wall contacts are not in it. The moment is
- * sum_a (x_a - c) x f_a about a centre c. Each (sub-)domain is summed with its own fluid, so
- * a body split across refinement levels counts each part once, against the fluid that resolves
- * it (buffer particles are not fluid: they copy the coupled domain's fluid, which is counted
- * there). Pressures are the store's Pressure dataset (vres-run writes the equation of state's
- * value of each particle's density there); with DBC walls the wall particles' own pressure
+ * sum_a (x_a - c) x f_a about a centre c.
+ *
+ * Refinement sub-domains: each domain is summed with its own fluid, kernel and h, taking only
+ * the fluid particles lying where that domain owns (lib/owner.h), against every wall particle
+ * of the body that the domain holds. Each fluid particle thus meets the walls once, those of
+ * the domain that resolves it, and the sum is minus the force the walls exert on all the real
+ * fluid: nothing is counted twice, nor missed where a wall crosses an interface. There each
+ * domain keeps wall particles a little way into the other's region (a parent inside a child's
+ * box, a child in its band outside), and those are exactly what the domain's own fluid near
+ * the interface needs for a full kernel support. Counting a wall particle only where its
+ * domain owns it would cut that support on both sides of the interface (1.52% of the load
+ * lost on the still-water tank of tests/lib/test_forces.c, whose two-domain load equals the
+ * single-domain one to 8e-10); counting every particle of every domain would count a
+ * parent's overlap fluid twice (+4.0% there). Buffer particles are never
+ * donors: they copy the coupled domain's fluid, which is counted there.
+ *
+ * Pressures are the store's Pressure dataset (vres-run writes the equation of state's value
+ * of each particle's density there); with DBC walls the wall particles' own pressure
  * enters each pair, so the force is that of the discrete DBC model, not the continuum traction
  * at the wall surface (see vres-forces(1)). */
 #ifndef VRES_FORCES_H
@@ -36,8 +49,11 @@ typedef struct vres_body_load {
     double moment[3];  /* sum of (x_a - centre) x f_a (N m; N m/m in 2D) */
     double centre[3];  /* centre of the moment (m) */
     int centre_kind;   /* vres_centre_kind */
-    size_t nbody;      /* body particles summed, over all domains */
-    size_t nwet;       /* those with at least one fluid neighbour within 2h */
+    size_t nbody;      /* body particles where their domain owns them, over all domains: each
+                          point of the body once */
+    size_t nshared;    /* body particles where another domain owns (near an interface); they
+                          take the load of their own domain's fluid only */
+    size_t nwet;       /* body particles (of either kind) with a counted fluid neighbour within 2h */
     size_t ndomains;   /* domains holding particles of the body */
 } vres_body_load;
 

@@ -2,6 +2,7 @@
 #include "probe.h"
 #include "fileio.h"
 #include "log.h"
+#include "owner.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -72,7 +73,7 @@ vres_probe_opts vres_probe_defaults(void)
     vres_probe_opts o;
     o.cond_max = VRES_INTERP_COND_MAX;
     o.colour_min = VRES_INTERP_COLOUR_MIN;
-    o.typemask = 1u << VRES_FLUID | 1u << VRES_BUFFER;
+    o.typemask = 1u << VRES_FLUID;
     return o;
 }
 
@@ -83,7 +84,7 @@ int vres_probe_snap_init(vres_probe_snap *ps, vres_store *s)
     size_t nd = s->ndomains;
     ps->cells = vres_xcalloc(nd ? nd : 1, sizeof *ps->cells);
     ps->k = vres_xcalloc(nd ? nd : 1, sizeof *ps->k);
-    ps->order = vres_xcalloc(nd ? nd : 1, sizeof *ps->order);
+    ps->owned = vres_xcalloc(nd ? nd : 1, sizeof *ps->owned);
     const vres_param *per = vres_params_find(&s->params, "periodic");
     for (size_t k = 0; k < nd; k++) {
         vres_domain *d = &s->dom[k];
@@ -114,15 +115,15 @@ int vres_probe_snap_init(vres_probe_snap *ps, vres_store *s)
             return -1;
         }
         ps->k[k] = vres_wendland_make(s->dim, d->h);
-        ps->order[k] = k;
     }
-    /* finest first (insertion sort: a handful of domains; ties keep the lower index first) */
-    for (size_t i = 1; i < nd; i++)
-        for (size_t j = i; j > 0 && s->dom[ps->order[j]].dp < s->dom[ps->order[j - 1]].dp; j--) {
-            size_t t = ps->order[j];
-            ps->order[j] = ps->order[j - 1];
-            ps->order[j - 1] = t;
-        }
+    /* after every reorder: ownership is by position, and the positions are now in cell order */
+    for (size_t k = 0; k < nd && nd > 1; k++) {
+        vres_domain *d = &s->dom[k];
+        uint8_t *own = vres_owner_mask(s, k);
+        for (size_t i = 0; i < d->n; i++) own[i] = own[i] ? d->type[i] : VRES_PROBE_ELSEWHERE;
+        ps->owned[k] = own;
+    }
+    if (nd == 1) ps->owned[0] = s->dom[0].type; /* one domain owns everything */
     return 0;
 }
 
@@ -130,26 +131,17 @@ void vres_probe_snap_free(vres_probe_snap *ps)
 {
     if (ps->cells && ps->s)
         for (size_t k = 0; k < ps->s->ndomains; k++) vres_cells_free(&ps->cells[k]);
+    if (ps->owned && ps->s && ps->s->ndomains > 1)
+        for (size_t k = 0; k < ps->s->ndomains; k++) free(ps->owned[k]);
     free(ps->cells);
     free(ps->k);
-    free(ps->order);
+    free(ps->owned);
     memset(ps, 0, sizeof *ps);
 }
 
 size_t vres_probe_domain_of(const vres_probe_snap *ps, const double x[3])
 {
-    const vres_store *s = ps->s;
-    for (size_t i = 0; i < s->ndomains; i++) {
-        const vres_domain *d = &s->dom[ps->order[i]];
-        if (d->parent < 0) continue; /* the root is the fallback */
-        int in = 1;
-        for (int a = 0; a < 3 && in; a++) {
-            if (a == 1 && s->dim == 2) continue;
-            in = x[a] >= d->box_min[a] && x[a] <= d->box_max[a];
-        }
-        if (in) return ps->order[i];
-    }
-    return 0;
+    return vres_owner(ps->s, x);
 }
 
 /* A copy of x wrapped into the periodic range of domain k's cells (other axes unchanged), as
@@ -168,6 +160,37 @@ static void wrap_point(const vres_probe_snap *ps, size_t k, const double x[3], d
     }
 }
 
+/* The colour at x from domain k's particles that lie where k owns (types in o->typemask). */
+static double domain_colour(const vres_probe_snap *ps, const vres_probe_opts *o, size_t k, const double x[3])
+{
+    const vres_domain *d = &ps->s->dom[k];
+    double y[3];
+    wrap_point(ps, k, x, y);
+    return vres_interp_colour(&ps->cells[k], ps->k[k], d->pos, d->rho, d->mass_p, ps->owned[k], o->typemask, y);
+}
+
+double vres_probe_colour(const vres_probe_snap *ps, const vres_probe_opts *o, const double x[3])
+{
+    double c = 0;
+    for (size_t k = 0; k < ps->s->ndomains; k++) c += domain_colour(ps, o, k, x);
+    return c;
+}
+
+/* Interpolate the m points sub[3m] (already wrapped for domain k) that domain k owns, from its
+ * fluid, into out[VRES_INTERP_NQ m], with the method of each into method[m]. A point whose
+ * support holds any of k's fluid gets a value here, however cut that support is by the box's
+ * edge; whether it is in the fluid is the caller's test on the colour over all domains. */
+static void domain_values(const vres_probe_snap *ps, const vres_probe_opts *o, size_t k, size_t m,
+                          const double *sub, double *out, int *method)
+{
+    const vres_domain *d = &ps->s->dom[k];
+    double *col = vres_xmalloc(m * sizeof *col);
+    /* the smallest positive colour_min: only an empty support counts as outside here */
+    vres_interp_loop_cpu(m, &ps->cells[k], ps->k[k], d->pos, d->vel, d->rho, d->press, d->mass_p, d->type,
+                         o->typemask, o->cond_max, 1e-300, sub, out, col, method);
+    free(col);
+}
+
 void vres_probe_points(const vres_probe_snap *ps, const vres_probe_opts *o, size_t n, const double *pts,
                        double *vals, double *colour, vres_probe_stats *st)
 {
@@ -183,7 +206,11 @@ void vres_probe_points(const vres_probe_snap *ps, const vres_probe_opts *o, size
     double *sub = vres_xmalloc(3 * n * sizeof *sub), *out = vres_xmalloc(VRES_INTERP_NQ * n * sizeof *out);
     double *col = vres_xmalloc(n * sizeof *col);
     int *method = vres_xmalloc(n * sizeof *method);
-    for (size_t i = 0; i < n; i++) dom[i] = vres_probe_domain_of(ps, &pts[3 * i]);
+#pragma omp parallel for schedule(static) if (n >= 256)
+    for (size_t i = 0; i < n; i++) {
+        dom[i] = vres_probe_domain_of(ps, &pts[3 * i]);
+        col[i] = vres_probe_colour(ps, o, &pts[3 * i]);
+    }
     /* one batch per domain: the very per-point loop a CUDA build launches (kernels/interp.h) */
     for (size_t k = 0; k < s->ndomains; k++) {
         size_t m = 0;
@@ -193,15 +220,14 @@ void vres_probe_points(const vres_probe_snap *ps, const vres_probe_opts *o, size
                 idx[m++] = i;
             }
         if (m == 0) continue;
-        const vres_domain *d = &s->dom[k];
-        vres_interp_loop_cpu(m, &ps->cells[k], ps->k[k], d->pos, d->vel, d->rho, d->press, d->mass_p, d->type,
-                             o->typemask, o->cond_max, o->colour_min, sub, out, col, method);
+        domain_values(ps, o, k, m, sub, out, method);
         for (size_t j = 0; j < m; j++) {
             size_t i = idx[j];
             double *v = &vals[VRES_PV_N * i], *f = &out[VRES_INTERP_NQ * j];
-            for (int q = 0; q < VRES_INTERP_NQ; q++) v[q] = f[q];
-            v[VRES_PV_SPEED] = sqrt(f[2] * f[2] + f[3] * f[3] + f[4] * f[4]);
-            if (colour) colour[i] = col[j];
+            if (!(col[i] >= o->colour_min)) method[j] = VRES_INTERP_OUTSIDE;
+            for (int q = 0; q < VRES_INTERP_NQ; q++) v[q] = method[j] == VRES_INTERP_OUTSIDE ? NAN : f[q];
+            v[VRES_PV_SPEED] = sqrt(v[2] * v[2] + v[3] * v[3] + v[4] * v[4]);
+            if (colour) colour[i] = col[i];
             if (st) {
                 st->corrected += method[j] == VRES_INTERP_CORRECTED;
                 st->shepard += method[j] == VRES_INTERP_SHEPARD;
@@ -210,16 +236,6 @@ void vres_probe_points(const vres_probe_snap *ps, const vres_probe_opts *o, size
         }
     }
     free(dom), free(idx), free(sub), free(out), free(col), free(method);
-}
-
-double vres_probe_colour(const vres_probe_snap *ps, const vres_probe_opts *o, const double x[3])
-{
-    if (ps->s->ndomains == 0) return 0;
-    size_t k = vres_probe_domain_of(ps, x);
-    const vres_domain *d = &ps->s->dom[k];
-    double y[3];
-    wrap_point(ps, k, x, y);
-    return vres_interp_colour(&ps->cells[k], ps->k[k], d->pos, d->rho, d->mass_p, d->type, o->typemask, y);
 }
 
 int vres_probe_surface(const vres_probe_snap *ps, const vres_probe_opts *o, const double a[3], const double b[3],
@@ -268,7 +284,7 @@ double vres_probe_maxz(const vres_probe_snap *ps, const vres_probe_opts *o, cons
     for (size_t k = 0; k < s->ndomains; k++) {
         const vres_domain *d = &s->dom[k];
         for (size_t i = 0; i < d->n; i++) {
-            if (!(o->typemask >> d->type[i] & 1u)) continue;
+            if (!(o->typemask >> ps->owned[k][i] & 1u)) continue;
             const double *x = &d->pos[3 * i];
             double dx = x[0] - p0[0], dy = s->dim == 2 ? 0 : x[1] - p0[1];
             if (dx * dx + dy * dy <= r2max && x[2] >= p0[2] && x[2] <= p0[2] + height && x[2] > zmax) zmax = x[2];

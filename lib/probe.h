@@ -2,13 +2,22 @@
  * (the library behind vres-probe; the per-point physics is kernels/interp.h).
  *
  * A store (one snapshot) is prepared once (vres_probe_snap_init: a cell list per domain);
- * then each point takes the finest domain whose fluid region [box_min, box_max] contains it
- * (the root covers everything) and is interpolated from that domain's fluid and buffer
- * particles with the first-order corrected kernel (Shepard where the moment matrix is
- * ill-conditioned, NaN where the kernel support holds too little fluid). Buffer particles
- * count because they are fluid whose values come from the coupled domain: without them a
- * point near a refinement box's edge would see a half-empty support, and the surface finder
- * a false surface along the box's edge.
+ * then each point is interpolated from the one domain that owns it (lib/owner.h: the finest
+ * whose fluid region holds it), from that domain's fluid particles only, with the first-order
+ * corrected kernel (Shepard where the moment matrix is ill-conditioned). Buffer particles are
+ * never donors: they are the coupled domain's fluid copied over, possibly a step stale, and
+ * that fluid is itself counted where it is owned. Walls are not donors either (the corrected
+ * kernel handles the support a wall cuts).
+ *
+ * Near a refinement box's edge the owning domain's fluid fills only part of a point's kernel
+ * support (the rest is the other domain's). The corrected kernel is first-order exact on such
+ * a cut support, as at a free surface; what must not see the cut is the colour (the fraction
+ * of the support that holds fluid), or every box edge would look like a free surface. So the
+ * colour of a point sums, over every domain, the fluid particles lying where their domain
+ * owns, each with its domain's kernel: the domains tile the flow, nothing is counted twice,
+ * and across an interface in still water the colour stays within a few per cent of 1 (see
+ * vres-probe(1) for the measured values). A point is outside the fluid (values NaN) where
+ * that colour is below the limit, or where its own domain has no fluid in reach.
  *
  * Also here: the points of --points files and --line specifications, reference series
  * (TSV/CSV read by column name) with L1/L2/Linf error norms, and the DualSPHysics <gauges>
@@ -17,6 +26,7 @@
 #define VRES_PROBE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "cells.h"
 #include "store.h"
@@ -49,8 +59,12 @@ typedef struct vres_probe_opts {
     unsigned typemask;  /* particle types interpolated from, bit 1 << vres_ptype */
 } vres_probe_opts;
 
-/* The defaults: VRES_INTERP_COND_MAX, VRES_INTERP_COLOUR_MIN, fluid and buffer particles. */
+/* The defaults: VRES_INTERP_COND_MAX, VRES_INTERP_COLOUR_MIN, fluid particles. */
 vres_probe_opts vres_probe_defaults(void);
+
+/* Type code of a particle lying where another domain owns, in vres_probe_snap.owned: no type
+ * mask has its bit, so sums over owned particles skip it. */
+#define VRES_PROBE_ELSEWHERE 7
 
 /* One store ready for probing: a cell list per domain over its particles, which are reordered
  * by cell (so the store is modified in place). */
@@ -58,7 +72,9 @@ typedef struct vres_probe_snap {
     vres_store *s;          /* the store probed (borrowed; its particles get reordered) */
     vres_cells *cells;      /* [s->ndomains] cell list of each domain, search radius 2h */
     vres_wendland *k;       /* [s->ndomains] kernel constants of each domain */
-    size_t *order;          /* [s->ndomains] domain indices, finest (smallest dp) first */
+    uint8_t **owned;        /* [s->ndomains] per particle (cell order): its type where its domain
+                               owns its position, VRES_PROBE_ELSEWHERE where another does; the
+                               domain's own type array when the store has one domain */
 } vres_probe_snap;
 
 /* Prepare store s for probing. Returns 0, or -1 after printing why (a domain whose cell list
@@ -66,8 +82,7 @@ typedef struct vres_probe_snap {
 int vres_probe_snap_init(vres_probe_snap *ps, vres_store *s);
 /* Free what vres_probe_snap_init allocated (not the store). */
 void vres_probe_snap_free(vres_probe_snap *ps);
-/* Index of the domain a point x (m) takes: the finest whose box contains it (y ignored in
- * 2D), else the root. */
+/* Index of the domain a point x (m) takes: its owner (vres_owner, lib/owner.h). */
 size_t vres_probe_domain_of(const vres_probe_snap *ps, const double x[3]);
 
 /* How the values of a batch of points were obtained. */
@@ -77,12 +92,14 @@ typedef struct vres_probe_stats {
     size_t outside;    /* points outside the fluid (values NaN) */
 } vres_probe_stats;
 
-/* Interpolate n points pts[3n] (m): vals[VRES_PV_N i + v] gets variable v at point i (NaN
- * outside the fluid), colour[i] (may be NULL) the colour; st (may be NULL) is added to. */
+/* Interpolate n points pts[3n] (m), each from the fluid of the domain that owns it:
+ * vals[VRES_PV_N i + v] gets variable v at point i (NaN outside the fluid), colour[i] (may be
+ * NULL) the colour over all domains (vres_probe_colour); st (may be NULL) is added to. */
 void vres_probe_points(const vres_probe_snap *ps, const vres_probe_opts *o, size_t n, const double *pts,
                        double *vals, double *colour, vres_probe_stats *st);
 
-/* The colour sum V W at x (dimensionless) from the domain x takes. */
+/* The colour at x (dimensionless): sum V W over the particles (types in o->typemask) of every
+ * domain that lie where their domain owns, each with its domain's kernel. */
 double vres_probe_colour(const vres_probe_snap *ps, const vres_probe_opts *o, const double x[3]);
 
 /* Result of a free-surface search (vres_probe_surface). */
@@ -100,7 +117,8 @@ int vres_probe_surface(const vres_probe_snap *ps, const vres_probe_opts *o, cons
 
 /* Largest z (m) of the particles (types in o->typemask) within horizontal distance
  * distlimit (m) of the vertical segment from p0 up to p0 + height (DualSPHysics' MaxZ gauge,
- * y ignored in 2D), over every domain; p0[2] when there is none. */
+ * y ignored in 2D), over every domain, each particle where its domain owns; p0[2] when there
+ * is none. */
 double vres_probe_maxz(const vres_probe_snap *ps, const vres_probe_opts *o, const double p0[3], double height,
                        double distlimit);
 

@@ -8,6 +8,7 @@
 extern "C" {
 #include "fileio.h"
 #include "log.h"
+#include "owner.h"
 }
 
 #include <cerrno>
@@ -18,6 +19,7 @@ extern "C" {
 #include <new>
 #include <string>
 #include <strings.h>
+#include <vector>
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -138,10 +140,23 @@ void report_exception(const char *name, const char *what)
     vres_error("%s: %s", name, what);
 }
 
-// 1 when a particle of this type is written.
-inline bool keep(const vres_vtk_opts *o, int type)
+// The particles options o write from domain k of s: show[i] = 1 for each one written (empty
+// when none is). Buffer particles and those lying where another domain owns go unless
+// o->buffers; other domains than o->domain go when one is picked.
+std::vector<unsigned char> selection(const vres_store *s, const vres_vtk_opts *o, size_t k)
 {
-    return !(o->no_buffer && type == VRES_BUFFER);
+    const vres_domain *d = &s->dom[k];
+    std::vector<unsigned char> show;
+    if (o->domain >= 0 && (size_t)o->domain != k) return show;
+    show.assign(d->n, 1);
+    if (o->buffers) return show;
+    uint8_t *own = d->pos ? vres_owner_mask(s, k) : nullptr;
+    for (size_t i = 0; i < d->n; i++) {
+        int type = d->type ? (int)d->type[i] : (int)VRES_FLUID;
+        show[i] = type != VRES_BUFFER && (!own || own[i]);
+    }
+    free(own);
+    return show;
 }
 
 // Give a ncomp components and n tuples. VTK reports a failed allocation (and leaves the array
@@ -166,13 +181,20 @@ template <class A> A *new_array(vtkPointData *pd, const char *name, int ncomp, v
 // Build the grid and write it; exceptions are left to the caller.
 int write_vtu(const vres_store *s, const vres_vtk_opts *o, const char *file, const char *name, size_t *npoints)
 {
+    if (o->domain >= 0 && (size_t)o->domain >= s->ndomains) {
+        vres_error("%s: no domain %d: the store has %zu (0 to %zu)", name, o->domain, s->ndomains,
+                   s->ndomains ? s->ndomains - 1 : 0);
+        return -1;
+    }
     // Which particles, and whether any of them has a normal worth writing.
+    std::vector<std::vector<unsigned char>> show(s->ndomains);
     vtkIdType n = 0;
     bool have_normal = false;
     for (size_t k = 0; k < s->ndomains; k++) {
         const vres_domain *d = &s->dom[k];
-        for (size_t i = 0; i < d->n; i++) {
-            if (!keep(o, d->type ? (int)d->type[i] : (int)VRES_FLUID)) continue;
+        show[k] = selection(s, o, k);
+        for (size_t i = 0; i < show[k].size(); i++) {
+            if (!show[k][i]) continue;
             n++;
             if (d->normal && (d->normal[3 * i] != 0 || d->normal[3 * i + 1] != 0 || d->normal[3 * i + 2] != 0))
                 have_normal = true;
@@ -207,9 +229,9 @@ int write_vtu(const vres_store *s, const vres_vtk_opts *o, const char *file, con
     vtkIdType j = 0;
     for (size_t k = 0; k < s->ndomains; k++) {
         const vres_domain *d = &s->dom[k];
-        for (size_t i = 0; i < d->n; i++) {
+        for (size_t i = 0; i < show[k].size(); i++) {
+            if (!show[k][i]) continue;
             int type = d->type ? (int)d->type[i] : (int)VRES_FLUID;
-            if (!keep(o, type)) continue;
             for (int c = 0; c < 3; c++) {
                 xyz[3 * j + c] = d->pos ? d->pos[3 * i + c] : 0;
                 if (a_vel) a_vel[3 * j + c] = d->vel ? d->vel[3 * i + c] : 0;
@@ -313,8 +335,25 @@ vres_vtk_opts vres_vtk_defaults(void)
     vres_vtk_opts o;
     o.fields = VRES_VTK_ALL;
     o.normal_auto = 1;
-    o.no_buffer = 0;
+    o.buffers = 0;
+    o.domain = -1;
     return o;
+}
+
+size_t vres_vtk_count(const vres_store *s, const vres_vtk_opts *o, size_t k, int t)
+{
+    try {
+        if (k >= s->ndomains) return 0;
+        std::vector<unsigned char> show = selection(s, o, k);
+        const vres_domain *d = &s->dom[k];
+        size_t n = 0;
+        for (size_t i = 0; i < show.size(); i++)
+            n += show[i] && (t < 0 || (d->type ? (int)d->type[i] : (int)VRES_FLUID) == t);
+        return n;
+    } catch (...) {
+        vres_error("out of memory counting the particles to write");
+        exit(1); // as vres_xmalloc does: a count has no error value
+    }
 }
 
 const char *vres_vtk_field_name(unsigned f)

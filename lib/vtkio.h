@@ -1,6 +1,13 @@
 /* vtkio.h - particles of a store as VTK files for ParaView: one XML unstructured grid (.vtu)
- * per store, every particle of every sub-domain a vertex cell, and a .pvd collection that
- * makes a time series of snapshots. Implemented over the VTK 9.1 C++ API in vtkio.cc; these
+ * per store, the particles of all its sub-domains together as vertex cells, and a .pvd
+ * collection that makes a time series of snapshots.
+ *
+ * Which particles: by default each point of the flow once. A domain keeps particles where
+ * another domain owns (lib/owner.h: a parent's buffer band, overlap fluid and walls inside a
+ * child's box; a child's buffer band and walls outside its box); those, and every buffer
+ * particle, are left out, so the domains tile the picture without double layers. With
+ * vres_vtk_opts.buffers every particle of every domain is written; vres_vtk_opts.domain
+ * keeps one domain's share of either selection. Implemented over the VTK 9.1 C++ API in vtkio.cc; these
  * functions never let a C++ exception or a VTK message escape: VTK's complaints become one
  * vres_error line naming the file.
  *
@@ -48,10 +55,13 @@ typedef struct vres_vtk_opts {
     unsigned fields; /* mask of vres_vtk_field bits to write */
     int normal_auto; /* 1: write Normal only when some written particle has a non-zero normal
                         (the default set, so fluid-only files carry no column of zeros) */
-    int no_buffer;   /* 1: leave out VRES_BUFFER particles */
+    int buffers;     /* 1: every particle, buffers and those lying where another domain owns
+                        included; 0: each point of the flow once (owned, non-buffer particles) */
+    int domain;      /* index of the one domain written, -1 for all of them */
 } vres_vtk_opts;
 
-/* The default options: every field, Normal where present, buffer particles included. */
+/* The default options: every field, Normal where present, each point of the flow once, all
+ * domains. */
 vres_vtk_opts vres_vtk_defaults(void);
 
 /* Name of the single field bit f ("Velocity"), or NULL when f is not one field. */
@@ -62,9 +72,14 @@ const char *vres_vtk_field_name(unsigned f);
  * the valid ones (a usage error). */
 int vres_vtk_parse_fields(const char *list, vres_vtk_opts *o);
 
+/* Number of particles of domain k of s (type t) that options o write, for the -v summary and
+ * for tests; t < 0 counts every type. */
+size_t vres_vtk_count(const vres_store *s, const vres_vtk_opts *o, size_t k, int t);
+
 /* Write the particles of s to file as a .vtu, directly (the caller owns atomicity: give it a
  * vres_outfile's tmp name). *npoints (may be NULL) gets the number of points written. name is
- * the path shown in messages (the final name). Returns 0, or -1 after one message. */
+ * the path shown in messages (the final name). Returns 0, or -1 after one message (o->domain
+ * beyond the store's domains is one). */
 int vres_vtk_write_file(const vres_store *s, const vres_vtk_opts *o, const char *file,
                         const char *name, size_t *npoints);
 

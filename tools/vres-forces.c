@@ -207,6 +207,10 @@ static void write_header(FILE *o, const request *r, const vres_store *s, const v
             L->ndomains == 1 ? "" : "s", strcmp(r->input, "-") ? r->input : "(stdin)", nsnap, nsnap == 1 ? "" : "s");
     fprintf(o, "# f = sum over the body's particles of m_a times their acceleration from fluid neighbours (pressure "
                "and viscous terms of vres-run), body weight excluded\n");
+    if (s->ndomains > 1)
+        fprintf(o, "# %zu domains: each domain's fluid where that domain owns it, against that domain's body particles "
+                   "(%zu more lie where another domain owns, near interfaces); buffer particles not counted\n",
+                s->ndomains, L->nshared);
     if (L->centre_kind == VRES_CENTRE_GIVEN)
         fprintf(o, "# moment about (%g, %g, %g) m (--centre)\n", L->centre[0], L->centre[1], L->centre[2]);
     else if (L->centre_kind == VRES_CENTRE_BODY)
@@ -263,7 +267,8 @@ static int compute_rows(FILE *o, const request *r, const snap *in, size_t n, row
             return 1;
         }
         if (i == 0) write_header(o, r, s, &L, n);
-        vres_debug("%s: t %g s, %zu body particles, %zu touching fluid", in[i].path, s->time, L.nbody, L.nwet);
+        vres_debug("%s: t %g s, %zu body particles (+ %zu where another domain owns), %zu touching fluid", in[i].path,
+                   s->time, L.nbody, L.nshared, L.nwet);
         row *w = &rows[i];
         w->time = s->time;
         for (int a = 0; a < 3; a++) w->v[COL_FX + a] = L.force[a], w->v[COL_MX + a] = L.moment[a];

@@ -1,10 +1,17 @@
 /* test_vtkio.c - unit tests of lib/vtkio.cc: a small synthetic two-domain store written as a
  * .vtu and read back with VTK's own XML reader (point count, vertex cells, arrays and their
- * value types, every value), --no-buffer, field selection, Normal only where present, the
- * .pvd collection, atomic output and one-message failures.
+ * value types, every value), the particle selection (buffers, ownership between domains, one
+ * domain), field selection, Normal only where present, the .pvd collection, atomic output and
+ * one-message failures.
  *
- * With VRES_TEST_STORE_OUT=PATH in the environment the binary only writes the synthetic store
- * to PATH (vres_store_write) and exits, so the tool tests get a store without vres-gencase. */
+ * The binary has three other modes for the tool tests (tests/vres-vtk/), so that they get
+ * stores without vres-gencase or vres-partition and count a .vtu by domain and type with VTK's
+ * reader rather than trusting the tool's own report:
+ *   VRES_TEST_STORE_OUT=PATH    write the synthetic store to PATH and exit;
+ *   VRES_TEST_DOMAINS_OUT=PATH  write the two-domain tank (two_domains()) to PATH and print
+ *                               the counts each selection must write: "SEL DOMAIN TYPE COUNT"
+ *                               lines, SEL one of default, buffers, domain1, domain1+buffers;
+ *   VRES_TEST_VTU_COUNT=PATH    read the .vtu PATH and print "DOMAIN TYPE COUNT" lines. */
 #include <check.h>
 #include <libxml/parser.h>
 #include <libxml/tree.h>
@@ -75,6 +82,11 @@ static vres_store *synthetic(int with_normals)
         d->parent = k - 1;
         d->dp = k ? 0.005 : 0.01;
         d->h = 1.2 * d->dp;
+        if (k) { /* the refined box holds every particle of domain 1 and none of the root's */
+            const double lo[3] = {1000.9, -1, -0.5}, hi[3] = {1001.1, 2, -0.1};
+            memcpy(d->box_min, lo, sizeof lo);
+            memcpy(d->box_max, hi, sizeof hi);
+        }
         int n = k ? N1 : N0;
         for (int i = 0; i < n; i++) {
             /* Positions far from the origin: they must survive as doubles. */
@@ -110,6 +122,7 @@ START_TEST(all_fields_roundtrip)
 {
     vres_store *s = synthetic(1);
     vres_vtk_opts o = vres_vtk_defaults();
+    o.buffers = 1; /* every particle, in store order */
     size_t np = 0;
     vres_vtu *v = roundtrip(s, &o, "all.vtu", &np);
     ck_assert_uint_eq(np, N0 + N1);
@@ -167,11 +180,11 @@ START_TEST(all_fields_roundtrip)
 }
 END_TEST
 
-START_TEST(no_buffer_drops_buffers)
+START_TEST(default_drops_buffers)
 {
+    /* every particle lies where its domain owns: the default leaves out the buffers only */
     vres_store *s = synthetic(1);
     vres_vtk_opts o = vres_vtk_defaults();
-    o.no_buffer = 1;
     size_t nbuf = 0;
     for (int i = 0; i < N0; i++) nbuf += types0[i] == VRES_BUFFER;
     for (int i = 0; i < N1; i++) nbuf += types1[i] == VRES_BUFFER;
@@ -193,12 +206,234 @@ START_TEST(no_buffer_drops_buffers)
 }
 END_TEST
 
+/* ------------------------------------------------------------------------------------------
+ * Domains: a 2D still-water tank (x-z plane) in two resolutions, laid out as vres-partition
+ * lays a refinement box out (DESIGN section 5), so that each point of the flow is held by the
+ * two domains at once near the box's edges:
+ *   root, dp 0.02 m: fluid x in [0, 1], z in [0, 0.4] and a bottom wall of 3 rows below z = 0,
+ *     drawn across the whole tank (the worst case: every wall particle in the box doubled);
+ *     inside the box its fluid is kept to depth overlappingh*h1 (the overlap) and buffer to
+ *     depth overlappingh*h1 + buffsizeh*h0 beyond it, deeper nothing;
+ *   child, dp 0.01 m, box x in [0.4, 0.6], z in [-0.1, 0.3] (so its wall crosses the box's
+ *     sides): fluid in the box, buffer in the band 2 h1 wide around it, and its own 3 wall
+ *     rows under box and band.
+ * h = sqrt(2) dp. No lattice point lies on a box face, so ownership is unambiguous.
+ * ---------------------------------------------------------------------------------------- */
+#define TANK_BOX_LO0 0.4
+#define TANK_BOX_HI0 0.6
+#define TANK_BOX_LO2 -0.1
+#define TANK_BOX_HI2 0.3
+
+/* 1 when (x, z) lies in the child's box. */
+static int in_tank_box(double x, double z)
+{
+    return x >= TANK_BOX_LO0 && x <= TANK_BOX_HI0 && z >= TANK_BOX_LO2 && z <= TANK_BOX_HI2;
+}
+
+/* Distance from (x, z) inside the child's box to its nearest face (m). */
+static double box_depth(double x, double z)
+{
+    return fmin(fmin(x - TANK_BOX_LO0, TANK_BOX_HI0 - x), fmin(z - TANK_BOX_LO2, TANK_BOX_HI2 - z));
+}
+
+/* Append particle (x, 0, z) of type t to domain k of s with still-water fields; count it in
+ * all[k][t], and in shown[k][t] when it is not a buffer and lies where k owns (by the box
+ * test above: the root owns outside the box, the child inside). */
+static void tank_push(vres_store *s, size_t k, double x, double z, int t, size_t all[2][VRES_NTYPES],
+                      size_t shown[2][VRES_NTYPES])
+{
+    vres_domain *d = &s->dom[k];
+    double p[3] = {x, 0, z};
+    size_t j = vres_domain_push(d, p, t, t == VRES_FIXED ? 0 : 1);
+    d->rho[j] = 1000.0f;
+    d->press[j] = (float)(1000.0 * 9.81 * (0.4 - z));
+    d->mass_p[j] = d->mass;
+    d->id[j] = 100000 * k + j;
+    all[k][t]++;
+    if (t != VRES_BUFFER && in_tank_box(x, z) == (k == 1)) shown[k][t]++;
+}
+
+/* The two-domain tank described above; all[k][t] gets the particles of each domain and
+ * type, shown[k][t] those the default selection writes. */
+static vres_store *two_domains(size_t all[2][VRES_NTYPES], size_t shown[2][VRES_NTYPES])
+{
+    memset(all, 0, 2 * VRES_NTYPES * sizeof all[0][0]);
+    memset(shown, 0, 2 * VRES_NTYPES * sizeof shown[0][0]);
+    vres_store *s = vres_store_new();
+    s->dim = 2;
+    s->name = strdup("tank2");
+    const double dp[2] = {0.02, 0.01};
+    for (int k = 0; k < 2; k++) {
+        vres_domain *d = vres_store_add_domain(s);
+        d->parent = k - 1;
+        d->dp = dp[k];
+        d->h = sqrt(2.0) * dp[k];
+        d->mass = 1000.0 * dp[k] * dp[k];
+        d->dpratio = k ? 2 : 1;
+        d->buffsizeh = 2;
+        d->overlappingh = 1;
+        const double lo[3] = {k ? TANK_BOX_LO0 : 0, 0, k ? TANK_BOX_LO2 : -0.06};
+        const double hi[3] = {k ? TANK_BOX_HI0 : 1, 0, k ? TANK_BOX_HI2 : 0.4};
+        memcpy(d->box_min, lo, sizeof lo);
+        memcpy(d->box_max, hi, sizeof hi);
+    }
+    double h0 = s->dom[0].h, h1 = s->dom[1].h, band1 = 2 * h1;
+    for (int i = 0; i < 50; i++) { /* root */
+        double x = (i + 0.5) * dp[0];
+        for (int j = -3; j < 20; j++) {
+            double z = (j + 0.5) * dp[0];
+            int t = j < 0 ? VRES_FIXED : VRES_FLUID;
+            if (t == VRES_FLUID && in_tank_box(x, z)) {
+                double depth = box_depth(x, z);
+                if (depth >= h1 + 2 * h0) continue; /* the parent holds nothing deeper */
+                if (depth >= h1) t = VRES_BUFFER;   /* its buffer band, beyond the overlap */
+            }
+            tank_push(s, 0, x, z, t, all, shown);
+        }
+    }
+    for (int i = 0; i < 100; i++) { /* child: box and band */
+        double x = (i + 0.5) * dp[1];
+        if (x < TANK_BOX_LO0 - band1 || x > TANK_BOX_HI0 + band1) continue;
+        for (int j = -3; j < 40; j++) {
+            double z = (j + 0.5) * dp[1];
+            if (z > TANK_BOX_HI2 + band1) continue;
+            int t = j < 0 ? VRES_FIXED : in_tank_box(x, z) ? VRES_FLUID : VRES_BUFFER;
+            tank_push(s, 1, x, z, t, all, shown);
+        }
+    }
+    return s;
+}
+
+/* Count the points of v by Domain and Type into n[k][t] (k < 2). */
+static void count_vtu(const vres_vtu *v, size_t n[2][VRES_NTYPES])
+{
+    memset(n, 0, 2 * VRES_NTYPES * sizeof n[0][0]);
+    for (size_t j = 0; j < vres_vtu_npoints(v); j++) {
+        int k = (int)vres_vtu_value(v, "Domain", j, 0), t = (int)vres_vtu_value(v, "Type", j, 0);
+        ck_assert(k >= 0 && k < 2 && t >= 0 && t < VRES_NTYPES);
+        n[k][t]++;
+    }
+}
+
+/* Compare per-domain, per-type counts; name says which selection. */
+static void same_counts(const char *name, size_t got[2][VRES_NTYPES], size_t want[2][VRES_NTYPES])
+{
+    for (int k = 0; k < 2; k++)
+        for (int t = 0; t < VRES_NTYPES; t++)
+            ck_assert_msg(got[k][t] == want[k][t], "%s: domain %d %s: %zu written, %zu expected", name, k,
+                          vres_ptype_name(t), got[k][t], want[k][t]);
+}
+
+/* The default writes each point of the flow once: no buffer, no parent particle in the box
+   (overlap fluid, walls), no child wall outside it; --buffers writes every particle. */
+START_TEST(domains_tile)
+{
+    size_t all[2][VRES_NTYPES], shown[2][VRES_NTYPES], got[2][VRES_NTYPES];
+    vres_store *s = two_domains(all, shown);
+    /* the layout has what the selection must remove: buffers on both sides, the root's
+       overlap fluid and walls in the box, the child's walls outside it */
+    ck_assert_uint_gt(all[0][VRES_BUFFER], 0);
+    ck_assert_uint_gt(all[1][VRES_BUFFER], 0);
+    ck_assert_uint_gt(all[0][VRES_FLUID], shown[0][VRES_FLUID]);
+    ck_assert_uint_gt(all[0][VRES_FIXED], shown[0][VRES_FIXED]);
+    ck_assert_uint_gt(all[1][VRES_FIXED], shown[1][VRES_FIXED]);
+    vres_vtk_opts o = vres_vtk_defaults();
+    vres_vtu *v = roundtrip(s, &o, "tile.vtu", NULL);
+    count_vtu(v, got);
+    same_counts("default", got, shown);
+    /* the wall is shown once along its whole length: 3 root rows outside the box's 10 root
+       columns, 3 child rows under its 20 columns */
+    ck_assert_uint_eq(got[0][VRES_FIXED], 3 * (50 - 10));
+    ck_assert_uint_eq(got[1][VRES_FIXED], 3 * 20);
+    for (size_t k = 0; k < 2; k++)
+        for (int t = 0; t < VRES_NTYPES; t++) ck_assert_uint_eq(vres_vtk_count(s, &o, k, t), shown[k][t]);
+    vres_vtu_free(v);
+    o.buffers = 1;
+    v = roundtrip(s, &o, "all.vtu", NULL);
+    count_vtu(v, got);
+    same_counts("--buffers", got, all);
+    vres_vtu_free(v);
+    printf("two-domain tank: default writes %zu + %zu of %zu + %zu particles\n",
+           shown[0][0] + shown[0][2], shown[1][0] + shown[1][2], s->dom[0].n, s->dom[1].n);
+    vres_store_free(s);
+}
+END_TEST
+
+/* --domain K: that domain's share of either selection; a domain the store lacks is refused. */
+START_TEST(one_domain)
+{
+    size_t all[2][VRES_NTYPES], shown[2][VRES_NTYPES], got[2][VRES_NTYPES], want[2][VRES_NTYPES];
+    vres_store *s = two_domains(all, shown);
+    vres_vtk_opts o = vres_vtk_defaults();
+    for (int buffers = 0; buffers <= 1; buffers++)
+        for (int k = 0; k < 2; k++) {
+            o.buffers = buffers;
+            o.domain = k;
+            memset(want, 0, sizeof want);
+            memcpy(want[k], buffers ? all[k] : shown[k], sizeof want[k]);
+            vres_vtu *v = roundtrip(s, &o, "one.vtu", NULL);
+            count_vtu(v, got);
+            same_counts(buffers ? "--domain K --buffers" : "--domain K", got, want);
+            vres_vtu_free(v);
+        }
+    o.domain = 2;
+    ck_assert_int_eq(vres_vtk_write(s, &o, in_dir("none.vtu"), NULL), -1);
+    ck_assert_int_eq(access(in_dir("none.vtu"), F_OK), -1);
+    vres_store_free(s);
+}
+END_TEST
+
+/* Three levels and two siblings: each particle written belongs to the finest box holding
+   it, and every position of a lattice common to all domains is written exactly once. */
+START_TEST(three_levels)
+{
+    /* every domain holds the same lattice (a stand-in for its own: ownership is about
+       positions), over x in [0, 1]: the root, siblings A [0.1, 0.4] and B [0.6, 0.9], and a
+       grandchild G [0.2, 0.3] inside A, whose box pokes out of A to z = 0.55 */
+    vres_store *s = vres_store_new();
+    s->dim = 2;
+    const double lo[4][2] = {{0, 0}, {0.1, 0.1}, {0.6, 0.1}, {0.2, 0.2}}, hi[4][2] = {{1, 1}, {0.4, 0.5}, {0.9, 0.5}, {0.3, 0.55}};
+    const int parent[4] = {-1, 0, 0, 1};
+    for (int k = 0; k < 4; k++) {
+        vres_domain *d = vres_store_add_domain(s);
+        d->parent = parent[k];
+        d->dp = k == 3 ? 0.0025 : k ? 0.005 : 0.01;
+        d->h = 1.5 * d->dp;
+        d->box_min[0] = lo[k][0], d->box_min[2] = lo[k][1];
+        d->box_max[0] = hi[k][0], d->box_max[2] = hi[k][1];
+        for (int i = 0; i < 40; i++)
+            for (int j = 0; j < 40; j++) {
+                double p[3] = {(i + 0.5) / 40, 0, (j + 0.5) / 40};
+                size_t b = vres_domain_push(d, p, VRES_FLUID, 0);
+                d->id[b] = 40 * i + j; /* the lattice position, the same in every domain */
+            }
+    }
+    vres_vtk_opts o = vres_vtk_defaults();
+    vres_vtu *v = roundtrip(s, &o, "levels.vtu", NULL);
+    ck_assert_uint_eq(vres_vtu_npoints(v), 1600);
+    int seen[1600] = {0};
+    for (size_t j = 0; j < vres_vtu_npoints(v); j++) {
+        int id = (int)vres_vtu_value(v, "Id", j, 0), k = (int)vres_vtu_value(v, "Domain", j, 0);
+        double x = (id / 40 + 0.5) / 40, z = (id % 40 + 0.5) / 40;
+        seen[id]++;
+        int inA = x > 0.1 && x < 0.4 && z > 0.1 && z < 0.5, inB = x > 0.6 && x < 0.9 && z > 0.1 && z < 0.5;
+        int inG = inA && x > 0.2 && x < 0.3 && z > 0.2 && z < 0.55;
+        int want = inG ? 3 : inA ? 1 : inB ? 2 : 0;
+        ck_assert_msg(k == want, "(%g, %g) written from domain %d, owned by %d", x, z, k, want);
+    }
+    for (int id = 0; id < 1600; id++) ck_assert_int_eq(seen[id], 1);
+    vres_vtu_free(v);
+    vres_store_free(s);
+}
+END_TEST
+
 START_TEST(field_selection)
 {
     vres_store *s = synthetic(1);
     vres_vtk_opts o = vres_vtk_defaults();
     ck_assert_int_eq(vres_vtk_parse_fields("velocity,Mk", &o), 0); /* names are case-insensitive */
     ck_assert_uint_eq(o.fields, VRES_VTK_VELOCITY | VRES_VTK_MK);
+    o.buffers = 1;
     vres_vtu *v = roundtrip(s, &o, "sel.vtu", NULL);
     ck_assert_uint_eq(vres_vtu_npoints(v), N0 + N1);
     ck_assert_int_eq(vres_vtu_ncomp(v, "Velocity"), 3);
@@ -244,14 +479,13 @@ END_TEST
 
 START_TEST(empty_selection)
 {
-    /* A store whose every particle is a buffer particle, with --no-buffer: a valid empty grid. */
+    /* A store whose every particle is a buffer particle, by default: a valid empty grid. */
     vres_store *s = vres_store_new();
     vres_domain *d = vres_store_add_domain(s);
     d->dp = 0.1;
     double p[3] = {0, 0, 0};
     vres_domain_push(d, p, VRES_BUFFER, 0);
     vres_vtk_opts o = vres_vtk_defaults();
-    o.no_buffer = 1;
     size_t np = 99;
     vres_vtu *v = roundtrip(s, &o, "empty.vtu", &np);
     ck_assert_uint_eq(np, 0);
@@ -337,20 +571,61 @@ START_TEST(reader_rejects_bad_files)
 }
 END_TEST
 
-int main(void)
+/* The tool-test modes (see the file's head comment); returns the exit status. */
+static int tool_mode(const char *store_out, const char *domains_out, const char *vtu_count)
 {
-    const char *store_out = getenv("VRES_TEST_STORE_OUT");
     if (store_out) {
         vres_store *s = synthetic(1);
         int rc = vres_store_write(s, store_out);
         vres_store_free(s);
         return rc == 0 ? 0 : 1;
     }
+    if (domains_out) {
+        size_t all[2][VRES_NTYPES], shown[2][VRES_NTYPES];
+        vres_store *s = two_domains(all, shown);
+        int rc = vres_store_write(s, domains_out);
+        for (int k = 0; k < 2; k++)
+            for (int t = 0; t < VRES_NTYPES; t++) {
+                printf("default %d %s %zu\nbuffers %d %s %zu\n", k, vres_ptype_name(t), shown[k][t], k,
+                       vres_ptype_name(t), all[k][t]);
+                printf("domain1 %d %s %zu\ndomain1+buffers %d %s %zu\n", k, vres_ptype_name(t), k == 1 ? shown[k][t] : 0,
+                       k, vres_ptype_name(t), k == 1 ? all[k][t] : 0);
+            }
+        vres_store_free(s);
+        return rc == 0 ? 0 : 1;
+    }
+    vres_vtu *v = vres_vtu_read(vtu_count);
+    if (!v) return 1;
+    size_t n[64][VRES_NTYPES] = {{0}};
+    for (size_t j = 0; j < vres_vtu_npoints(v); j++) {
+        double k = vres_vtu_value(v, "Domain", j, 0), t = vres_vtu_value(v, "Type", j, 0);
+        if (!(k >= 0 && k < 64 && t >= 0 && t < VRES_NTYPES)) {
+            fprintf(stderr, "%s: point %zu: Domain %g Type %g out of range\n", vtu_count, j, k, t);
+            vres_vtu_free(v);
+            return 1;
+        }
+        n[(int)k][(int)t]++;
+    }
+    for (int k = 0; k < 64; k++)
+        for (int t = 0; t < VRES_NTYPES; t++)
+            if (n[k][t]) printf("%d %s %zu\n", k, vres_ptype_name(t), n[k][t]);
+    vres_vtu_free(v);
+    return 0;
+}
+
+int main(void)
+{
+    const char *store_out = getenv("VRES_TEST_STORE_OUT"), *domains_out = getenv("VRES_TEST_DOMAINS_OUT");
+    const char *vtu_count = getenv("VRES_TEST_VTU_COUNT");
+    if (store_out || domains_out || vtu_count) return tool_mode(store_out, domains_out, vtu_count);
     Suite *su = suite_create("vtkio");
     TCase *tc = tcase_create("vtu");
     tcase_add_checked_fixture(tc, setup, teardown);
     tcase_add_test(tc, all_fields_roundtrip);
-    tcase_add_test(tc, no_buffer_drops_buffers);
+    tcase_add_test(tc, default_drops_buffers);
+    tcase_add_test(tc, domains_tile);
+    tcase_add_test(tc, one_domain);
+    tcase_add_test(tc, three_levels);
     tcase_add_test(tc, field_selection);
     tcase_add_test(tc, unknown_field_rejected);
     tcase_add_test(tc, normal_only_where_present);

@@ -54,6 +54,11 @@ cp "$T/keep.vtu" "$T/keep.orig"
 expect_err 1 'text\.h5' "failure keeps the old output" "$VTK" "$T/text.h5" -o "$T/keep.vtu"
 cmp -s "$T/keep.vtu" "$T/keep.orig"; check "old output unchanged" [ $? = 0 ]
 
+# A domain the store does not have (exit 1: it is the input's property).
+expect_err 1 'syn\.vtu: no domain 5: the store has 2 \(0 to 1\)' "--domain beyond the store" \
+    "$VTK" --domain 5 "$T/syn.h5" -o "$T/out"
+nothing_new "--domain beyond the store"
+
 # Unwritable outputs.
 expect_err 1 'plain/x\.vtu: cannot write' "-o under a regular file" "$VTK" "$T/syn.h5" -o "$T/plain/x.vtu"
 expect_err 1 'plain: cannot write: exists and is not a directory' "-o directory is a file" \
@@ -80,6 +85,8 @@ expect_err 2 "unknown field 'Vorticity'.*valid: Domain, Type, Mk, Id, Velocity" 
 nothing_in "$T/out" "unknown field: nothing written"
 expect_err 2 "empty field name" "empty field" "$VTK" --fields Velocity, "$T/syn.h5" -o "$T/out"
 expect_err 2 'missing -o' "missing -o" "$VTK" "$T/syn.h5"
+expect_err 2 "--domain.*integer" "--domain not a number" "$VTK" --domain one "$T/syn.h5" -o "$T/out"
+expect_err 2 "--domain -1: not a domain index" "--domain negative" "$VTK" --domain -1 "$T/syn.h5" -o "$T/out"
 expect_err 2 'run directory gives one file per snapshot' ".vtu name for a run" "$VTK" "$T/run" -o "$T/out/r.vtu"
 expect_err 2 'several inputs' ".vtu name for two inputs" "$VTK" "$T/syn.h5" "$T/foreign.h5" -o "$T/out/r.vtu"
 expect_err 2 "standard input .* only once" "stdin twice" "$VTK" - - -o "$T/out"

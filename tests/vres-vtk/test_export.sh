@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # vres-vtk on good input: a store to a .vtu file and to a directory, stdin, several inputs,
-# --no-buffer and --fields, a run directory to a .pvd time series, and a generated case end to
-# end. Expected counts come from the store itself, read with h5ls/h5dump (not with vres).
+# buffers left out by default and --buffers, --fields, a run directory to a .pvd time series,
+# a two-domain store counted by domain and type under each selection (--buffers, --domain),
+# and a generated case end to end. Expected counts come from the store itself, read with
+# h5ls/h5dump (not with vres), or from the construction of the two-domain store.
 # (--help against the man page is checked for every tool by tests/man/test_synopsis.sh.)
 source "$(dirname "$0")/../harness.sh"
 VTK=$BIN/vres-vtk
 
 # The store: the synthetic two-domain store of tests/lib/test_vtkio.c (buffer particles in
-# both domains, wall normals), written by that test binary.
+# both domains, wall normals, each particle where its domain owns), written by that test
+# binary.
 MAKER=$ROOT/$VRES_BUILD/tests/test_vtkio
 if ! VRES_TEST_STORE_OUT=$T/syn.h5 "$MAKER" >/dev/null 2>&1; then
     notok "make the test store with $MAKER (build it: make $VRES_BUILD/tests/test_vtkio)"
@@ -39,9 +42,9 @@ NBUF=$(buffer_count "$T/syn.h5")
 check "test store has particles and buffers" [ "$N" -gt 0 -a "$NBUF" -gt 0 ]
 
 # One store to a named .vtu.
-expect 0 "store to .vtu" "$VTK" "$T/syn.h5" -o "$T/one.vtu"
+expect 0 "store to .vtu" "$VTK" --buffers "$T/syn.h5" -o "$T/one.vtu"
 check "one.vtu is a VTK unstructured grid" grep -a -q '<VTKFile type="UnstructuredGrid"' "$T/one.vtu"
-check "one.vtu holds every particle" [ "$(vtu_points "$T/one.vtu")" = "$N" ]
+check "--buffers: one.vtu holds every particle" [ "$(vtu_points "$T/one.vtu")" = "$N" ]
 ok_arrays=1
 for a in Domain Type Mk Id Velocity Density Pressure Mass Dp Normal; do has_array "$T/one.vtu" $a || ok_arrays=0; done
 check "one.vtu has every point array" [ $ok_arrays = 1 ]
@@ -51,14 +54,15 @@ check "no temporary left" [ -z "$(ls -A "$T" | grep '^\.')" ]
 check "silent on success" [ ! -s "$ERR" ]
 
 # To a directory (created), named after the input.
-expect 0 "store to new directory" "$VTK" "$T/syn.h5" -o "$T/dir/sub"
+expect 0 "store to new directory" "$VTK" --buffers "$T/syn.h5" -o "$T/dir/sub"
 check "directory holds syn.vtu" [ "$(ls -A "$T/dir/sub")" = "syn.vtu" ]
 cmp -s "$T/one.vtu" "$T/dir/sub/syn.vtu"; check "same content either way" [ $? = 0 ]
 
 # From stdin: named after the case name recorded in the store.
-run "$VTK" -v - -o "$T/stdin" <"$T/syn.h5"
+run "$VTK" -v --buffers - -o "$T/stdin" <"$T/syn.h5"
 check "stdin store exported" [ "$STATUS" = 0 -a "$(vtu_points "$T/stdin/synthetic.vtu")" = "$N" ]
 check "-v names the file and its points" grep -q "synthetic.vtu: $N points" "$ERR"
+check "-v counts each domain's particles by type" grep -q "D1 (dp 0.005 m): 1 fluid, 2 buffer, 1 moving" "$ERR"
 
 # Several inputs into one directory.
 cp "$T/syn.h5" "$T/a.h5"
@@ -66,9 +70,10 @@ cp "$T/syn.h5" "$T/b.h5"
 expect 0 "two stores" "$VTK" "$T/a.h5" "$T/b.h5" -o "$T/two"
 check "one .vtu per input" [ "$(ls "$T/two" | tr '\n' ' ')" = "a.vtu b.vtu " ]
 
-# --no-buffer drops exactly the buffer particles.
-expect 0 "--no-buffer" "$VTK" --no-buffer "$T/syn.h5" -o "$T/nobuf.vtu"
-check "--no-buffer count = all - buffers" [ "$(vtu_points "$T/nobuf.vtu")" = $((N - NBUF)) ]
+# By default exactly the buffer particles are left out (every other one lies where its domain
+# owns in this store).
+expect 0 "default selection" "$VTK" "$T/syn.h5" -o "$T/nobuf.vtu"
+check "default count = all - buffers" [ "$(vtu_points "$T/nobuf.vtu")" = $((N - NBUF)) ]
 
 # --fields writes those arrays only (names case-insensitive).
 expect 0 "--fields" "$VTK" --fields velocity,Mk "$T/syn.h5" -o "$T/sel.vtu"
@@ -94,6 +99,32 @@ check "every file the pvd lists exists" [ $all = 1 ]
 t=$(h5dump -y -w 0 -a /time "$T/syn.h5" | sed -n '/DATA {/,/}/p' | grep -o '[-0-9.e+]*' | head -1)
 check "pvd times are the snapshots' times" [ "$(grep -c "timestep=\"$t\"" "$T/vtk/run.pvd")" = 4 ]
 check "pvd collection is VTK XML" grep -q '<VTKFile type="Collection"' "$T/vtk/run.pvd"
+
+# The two-domain tank of tests/lib/test_vtkio.c (two_domains(): buffers on both sides of the
+# refinement box, the root's overlap fluid and wall inside it, the child's wall outside): the
+# test binary writes it with the counts each selection must give, and counts a .vtu by Domain
+# and Type with VTK's own reader.
+VRES_TEST_DOMAINS_OUT=$T/tank2.h5 "$MAKER" >"$T/want.txt"
+check "two-domain store written" [ -s "$T/tank2.h5" ]
+# counts SEL: the expected "DOMAIN TYPE COUNT" lines of selection SEL (non-zero ones)
+counts() { awk -v s="$1" '$1 == s && $4 > 0 {print $2, $3, $4}' "$T/want.txt"; }
+# vtu_counts FILE: what the .vtu holds, by domain and type
+vtu_counts() { VRES_TEST_VTU_COUNT=$1 "$MAKER"; }
+for sel in default buffers domain1 domain1+buffers; do
+    opts=()
+    case $sel in buffers) opts=(--buffers) ;; domain1) opts=(--domain 1) ;; domain1+buffers) opts=(--domain 1 --buffers) ;; esac
+    expect 0 "two domains, $sel" "$VTK" "${opts[@]}" "$T/tank2.h5" -o "$T/tank_$sel.vtu"
+    check "two domains, $sel: counts by domain and type" diff <(counts $sel) <(vtu_counts "$T/tank_$sel.vtu")
+done
+# root: 50 x 20 fluid less the 10 x 15 in the box, 3 wall rows outside its 10 columns; child:
+# its 20 x 30 fluid, 3 wall rows under the box
+check "default: one fluid and one wall layer per point, no buffer" \
+    [ "$(counts default | tr '\n' ' ')" = "0 fluid 850 0 fixed 120 1 fluid 600 1 fixed 60 " ]
+check "--buffers: every particle of both domains" \
+    [ "$(vtu_points "$T/tank_buffers.vtu")" = "$(awk '$1 == "buffers" {n += $4} END {print n}' "$T/want.txt")" ]
+expect 0 "--domain 0 -v" "$VTK" -v --domain 0 "$T/tank2.h5" -o "$T/tank_d0.vtu"
+check "--domain 0: the root's share" diff <(counts default | grep '^0 ') <(vtu_counts "$T/tank_d0.vtu")
+check "-v lists only the domain written" [ "$(grep -c '  D[0-9]' "$ERR")" = 1 ]
 
 # End to end from a case, when vres-gencase is there.
 if [ -x "$BIN/vres-gencase" ] && [ -f "$CASES/dambreak2d/dambreak2d_Def.xml" ]; then
