@@ -51,6 +51,8 @@ struct vres_canvas {
     uint8_t *st;   /* [nnodes] VRES_PAINT_* state plus ST_HASN */
     int32_t *mk;   /* [nnodes] mk of fluid and bound nodes, 0 for void */
     nmap nm;       /* normals of wall nodes */
+    nmap sm;       /* normals pass: nearest surface vector of each bound node measured so far */
+    double smax;   /* normals pass: largest distance measured (m), 0 when no pass is open */
     int failed;    /* 1 once a drawing was refused as bad input */
 };
 
@@ -319,6 +321,8 @@ void vres_canvas_free(vres_canvas *c)
     free(c->mk);
     free(c->nm.key);
     free(c->nm.val);
+    free(c->sm.key);
+    free(c->sm.val);
     free(c);
 }
 
@@ -400,6 +404,8 @@ static int prepare(vres_canvas *c, const vres_paint *pt, layering *L, const char
         if (!isfinite(pt->matrix[i])) bad = "transform matrix is not finite";
     for (int i = 0; !bad && i < pt->nlayers; i++)
         if (!isfinite(pt->layers[i])) bad = "layer offset is not finite";
+    if (!bad && pt->surface && pt->nlayers > 1) bad = "a normals surface takes one layer offset";
+    if (!bad && pt->surface && !(c->smax > 0)) bad = "a normals surface outside a normals pass";
     if (bad) {
         vres_error("%s: %s", cmd, bad);
         c->failed = 1;
@@ -415,6 +421,10 @@ static int prepare(vres_canvas *c, const vres_paint *pt, layering *L, const char
         if (L->side * L->off[i] > far) far = L->side * L->off[i];
     }
     L->cif = far + c->dp / 2;
+    if (pt->surface) { /* the surface itself: the shape grown by its offset, outward */
+        L->side = 1;
+        L->cif = L->off[0];
+    }
     return 1;
 }
 
@@ -437,9 +447,82 @@ static unsigned mode_classes(int mode)
     }
 }
 
-/* Paint the nodes of shape d that any layer puts in a class the draw mode wants. */
+/* Normals pass: the vector from every bound node within c->smax of shape d's surface to it,
+ * kept when nearer than what an earlier surface gave. Returns the nodes measured. */
+static size_t measure(vres_canvas *c, const drawer *d, const layering *L)
+{
+    size_t r0[3], r1[3];
+    double g = c->smax, tie = TIE * c->dp;
+    for (int a = 0; a < 3; a++)
+        if (!axis_range(c, a, d->lo[a] - g, d->hi[a] + g, &r0[a], &r1[a])) return 0;
+    size_t count = 0;
+    for (size_t k = r0[2]; k <= r1[2]; k++)
+        for (size_t j = r0[1]; j <= r1[1]; j++) {
+            size_t row = c->n[0] * (j + c->n[1] * k);
+            for (size_t i = r0[0]; i <= r1[0]; i++) {
+                if ((c->st[row + i] & ST_STATE) != VRES_PAINT_BOUND) continue;
+                double p[3], nv[3];
+                node_pos(c, i, j, k, p);
+                d->normal(d->sh, p, L->side, L->cif, nv);
+                if (c->dim == 2) nv[1] = 0;
+                double l2 = dot3(nv, nv);
+                if (l2 > (g + tie) * (g + tie)) continue;
+                const float *old = nm_get(&c->sm, row + i);
+                if (old && (double)old[0] * old[0] + (double)old[1] * old[1] + (double)old[2] * old[2] <= l2) continue;
+                float v[3] = {(float)nv[0], (float)nv[1], (float)nv[2]};
+                nm_put(&c->sm, row + i, v);
+                count++;
+            }
+        }
+    return count;
+}
+
+int vres_canvas_surface_begin(vres_canvas *c, double maxdist)
+{
+    if (!c) return -1;
+    if (!(maxdist > 0) || !isfinite(maxdist)) {
+        vres_error("normals: the largest distance to the geometry must be a positive number (got %g)", maxdist);
+        c->failed = 1;
+        return -1;
+    }
+    free(c->sm.key), free(c->sm.val);
+    if (nm_init(&c->sm, 10)) {
+        vres_error("out of memory for wall normals");
+        exit(1);
+    }
+    c->smax = maxdist;
+    return 0;
+}
+
+size_t vres_canvas_surface_end(vres_canvas *c, double maxsize)
+{
+    if (!c || !(c->smax > 0)) return 0;
+    size_t count = 0;
+    static const float zero[3] = {0, 0, 0};
+    for (size_t idx = 0; idx < c->nnodes; idx++) {
+        if ((c->st[idx] & ST_STATE) != VRES_PAINT_BOUND) continue;
+        const float *v = nm_get(&c->sm, idx);
+        double l = v ? sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]) : 0;
+        if (v && (maxsize <= 0 || l <= maxsize)) {
+            float w[3] = {v[0], v[1], v[2]};
+            nm_put(&c->nm, idx, w);
+            c->st[idx] |= ST_HASN;
+            count++;
+        } else if (c->st[idx] & ST_HASN) {
+            nm_put(&c->nm, idx, zero);
+        }
+    }
+    free(c->sm.key), free(c->sm.val);
+    memset(&c->sm, 0, sizeof c->sm);
+    c->smax = 0;
+    return count;
+}
+
+/* Paint the nodes of shape d that any layer puts in a class the draw mode wants (or, for a
+ * normals surface, measure the bound nodes' vectors to it). */
 static size_t draw(vres_canvas *c, const vres_paint *pt, const drawer *d, const layering *L)
 {
+    if (pt->surface) return measure(c, d, L);
     size_t r0[3], r1[3];
     for (int a = 0; a < 3; a++)
         if (!axis_range(c, a, d->lo[a], d->hi[a], &r0[a], &r1[a])) return 0;
@@ -988,6 +1071,7 @@ typedef struct planesh {
     double nv[3];        /* right-hand unit normal of the vertex order */
     const double *off;   /* [layers] offsets along nv (m) */
     double h, tie;       /* half dp, tie tolerance (m) */
+    int clamp;           /* normals surface: the vector goes to the polygon, not its whole plane */
 } planesh;
 
 /* Classes of p for the polygon moved along its normal by the layer's offset. */
@@ -1010,6 +1094,11 @@ static void plane_normal(const void *sh, const double p[3], int side, double cif
     double w[3] = {p[0] - P->org[0], p[1] - P->org[1], p[2] - P->org[2]};
     double df = side * dot3(w, P->nv);
     for (int k = 0; k < 3; k++) n[k] = (cif - df) * side * P->nv[k];
+    if (!P->clamp) return; /* painted nodes lie on the polygon: its plane is the surface */
+    double u = dot3(w, P->e1), v = dot3(w, P->e2);
+    if (polygon_inside((const double (*)[2])P->q, P->np, u, v)) return;
+    near2 nr = polyline_nearest((const double (*)[2])P->q, P->np, 1, u, v);
+    for (int k = 0; k < 3; k++) n[k] += (nr.pt[0] - u) * P->e1[k] + (nr.pt[1] - v) * P->e2[k];
 }
 
 /* The 3D drawpolygon: a planar face. */
@@ -1060,6 +1149,7 @@ static size_t plane_polygon(vres_canvas *c, const vres_paint *paint, int np, con
         P.q[i][0] = dot3(r, P.e1), P.q[i][1] = dot3(r, P.e2);
     }
     P.off = L->off;
+    P.clamp = paint->surface;
     P.h = c->dp / 2;
     P.tie = TIE * c->dp;
     double offlo = 0, offhi = 0;

@@ -103,6 +103,11 @@ typedef struct vres_paint {
     double matrix[16];    /* current transform (move/rotate/scale), row-major 4x4, applied to shape points */
     int nlayers;          /* number of layer offsets for the next shape (0: just the surface) */
     double layers[VRES_MAX_LAYERS]; /* layer offsets in units of dp along the shape's outward normal */
+    int surface;          /* 1: the shape is a normals surface (GenCase's geometry drawn with
+                             setactive drawpoints="0" and named by <normals>): it paints nothing and
+                             measures, between vres_canvas_surface_begin and _end, the vector from
+                             each bound node to its surface (the shape grown by its one layer
+                             offset, outward as for layers, whatever setnormalinvert says) */
 } vres_paint;
 
 /* Opaque lattice. */
@@ -153,6 +158,15 @@ size_t vres_canvas_extrude(vres_canvas *c, const vres_paint *paint, int np, cons
  * its node is not fillable. VRES_FILL_BORDER is refused (bad input). */
 size_t vres_canvas_fill(vres_canvas *c, const vres_paint *paint, const double seed[3], const double bmin[3],
                         const double bmax[3], unsigned modefill);
+
+/* Begin a normals pass: drawings with paint->surface set measure, for each bound node within
+ * maxdist (m) of their surface, the vector to the nearest point of it; the nearest of all the
+ * pass' surfaces wins. Returns 0, or -1 (message printed) when maxdist is not positive. */
+int vres_canvas_surface_begin(vres_canvas *c, double maxdist);
+/* End the pass: every bound node gets the vector measured for it as its normal, or none (zero)
+ * when no surface came within maxdist or the vector is longer than maxsize (m; <= 0: no
+ * limit), as GenCase's <normals><norgeometry> does. Returns the number of nodes given one. */
+size_t vres_canvas_surface_end(vres_canvas *c, double maxsize);
 
 /* 1 once a drawing was refused as bad input (its message already printed), else 0. */
 int vres_canvas_failed(const vres_canvas *c);

@@ -571,6 +571,11 @@ static double final_h(const cd_consts *k, int dim, double dp)
     return coefh * sqrt(dp * dp * dim);
 }
 
+double cd_h(const cd_ctx *c)
+{
+    return final_h(&c->k, c->dim, c->dp);
+}
+
 /* Variables GenCase offers once the constants are known (Rhop0, Gravity_x, H, MassFluid...). */
 static void predefine_consts(cd_ctx *c)
 {
@@ -927,7 +932,7 @@ static xmlNodePtr read_commands(cd_ctx *c, xmlNodePtr cmds)
 /* The main elements of a case, found once. */
 typedef struct cd_parts {
     xmlNodePtr casedef, exec;        /* <casedef>, <execution> */
-    xmlNodePtr constantsdef, mkconfig, geometry, floatings, motion, vres; /* in <casedef> */
+    xmlNodePtr constantsdef, mkconfig, geometry, floatings, motion, vres, normals; /* in <casedef> */
     xmlNodePtr commands, mainlist;   /* in <geometry> */
     xmlNodePtr parameters, special;  /* in <execution> */
 } cd_parts;
@@ -953,10 +958,6 @@ static int find_parts(cd_ctx *c, xmlNodePtr root, cd_parts *p)
         cd_err(c, root, "<case> has no <casedef>");
         return -1;
     }
-    for (xmlNodePtr n = p->casedef->children; n; n = n->next)
-        if (cd_is_elem(n) && !strcmp(cd_name(n), "normals") && !cd_inactive(c, n))
-            cd_err(c, n, "element <normals> is not supported: vres computes wall normals from the drawn shapes "
-                         "(remove it or set active=\"false\")");
     cd_check_children(c, p->casedef, casedef_kids);
     cd_check_attrs(c, p->casedef, (const char *const[]){"requiredversion", NULL});
     p->constantsdef = single(c, p->casedef, "constantsdef");
@@ -965,6 +966,7 @@ static int find_parts(cd_ctx *c, xmlNodePtr root, cd_parts *p)
     p->floatings = single(c, p->casedef, "floatings");
     p->motion = single(c, p->casedef, "motion");
     p->vres = single(c, p->casedef, "vres");
+    p->normals = single(c, p->casedef, "normals");
     if (!p->geometry) {
         cd_err(c, p->casedef, "<casedef> has no <geometry>");
         return -1;
@@ -1001,10 +1003,16 @@ static void read_geometry(cd_ctx *c, cd_parts *p)
     }
     cd_scan_bodies(c, p->floatings, p->motion);
     vres_paint_init(&c->paint);
+    c->drawpoints = c->drawshapes = 1;
+    c->shapekinds = 7u;
     p->commands = single(c, p->geometry, "commands");
     p->mainlist = read_commands(c, p->commands);
     if (!p->commands) cd_err(c, p->geometry, "<geometry> has no <commands>: nothing is drawn");
     if (p->mainlist) cd_run_commands(c, p->mainlist);
+    if (p->normals && c->canvas && !c->nerr) cd_read_normals(c, p->normals);
+    else if (c->hidden && !p->normals)
+        cd_note(c, p->mainlist, "%d shape%s drawn with setactive drawpoints=\"0\" %s not used: the case has no "
+                "<normals>", c->hidden, c->hidden == 1 ? "" : "s", c->hidden == 1 ? "is" : "are");
 }
 
 /* The particles (when nothing went wrong so far) and the bodies made of them, then the
@@ -1022,6 +1030,7 @@ static void read_rest(cd_ctx *c, cd_parts *p, vres_store *s)
     }
     if (p->vres && !cd_inactive(c, p->vres)) cd_read_vres(c, p->vres, s);
     cd_read_parameters(c, p->parameters, s, have_root ? bbmin : NULL, have_root ? bbmax : NULL);
+    if (have_root && s->nboxes) cd_clip_boxes(c, s);
     if (p->special) cd_read_special(c, p->special, s);
     if (p->mainlist || !p->commands) cd_check_overrides_used(c);
     if (have_root) {
@@ -1063,6 +1072,7 @@ done:
     free(c->ov);
     free(c->float_mk);
     free(c->move_mk);
+    cd_free_shapes(c);
     if (c->nerr && s) {
         vres_store_free(s);
         s = NULL;

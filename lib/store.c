@@ -680,6 +680,7 @@ static void write_boxes(wctx *w, hid_t f, const vres_store *s)
         put_d(w, bg, "buffsizeh", b->buffsizeh);
         put_d(w, bg, "overlappingh", b->overlappingh);
         put_i(w, bg, "tracking_mk", b->tracking_mk);
+        put_i64(w, bg, "line", b->line);
         end_group(w, bg);
     }
     end_group(w, g);
@@ -1433,6 +1434,9 @@ static void read_boxes(rctx *r, hid_t f, vres_store *s)
         b->buffsizeh = get_d(r, bg, "buffsizeh");
         b->overlappingh = get_d(r, bg, "overlappingh");
         b->tracking_mk = get_i(r, bg, "tracking_mk");
+        long long line = 0; /* optional: stores written before it was recorded lack it */
+        if (!r->bad && bg >= 0 && H5Aexists(bg, "line") > 0) get_num(r, bg, "line", 1, 1, H5T_NATIVE_LLONG, &line);
+        b->line = (long)line;
         if (!r->bad && (b->parent < -1 || b->parent >= (int)i))
             rerr(r, "/VRes/B%zu: parent %d (-1 or an earlier box expected)", i, b->parent);
         if (bg >= 0) H5Gclose(bg);

@@ -144,6 +144,7 @@ typedef struct vres_box {
     double buffsizeh;     /* buffer band width in units of the child's h */
     double overlappingh;  /* overlap in units of h */
     int tracking_mk;      /* mkbound followed by the box, -1 for none */
+    long line;            /* line of its <bufferbox> in the case XML, 0 when unknown */
 } vres_box;
 
 /* Everything one store file holds. */

@@ -386,7 +386,10 @@ START_TEST(vres_boxes)
                     "<dpratio v=\"2\"/></bufferbox>"
                     "<bufferbox><point x=\"1.2\" y=\"0\" z=\"0\"/><size x=\"0.5\" y=\"0\" z=\"0.5\"/><dpratio v=\"4\"/>"
                     "</bufferbox></vres>";
-    vres_store *s = rd(mkcase("", DEF2D, WATER, v, SYMPL));
+    /* the domain reaches x = 2, so the third box lies in it */
+    const char *wide = "<parameters>" P("StepAlgorithm", "2")
+                       "<simulationdomain><posmax x=\"2\" y=\"default\" z=\"default\"/></simulationdomain></parameters>";
+    vres_store *s = rd(mkcase("", DEF2D, WATER, v, wide));
     ck_assert_ptr_nonnull(s);
     ck_assert_uint_eq(s->nboxes, 3);
     ck_assert_int_eq(s->box[0].parent, -1);
@@ -525,6 +528,30 @@ START_TEST(skips_and_refusals)
 END_TEST
 
 /* Gauges and inlet/outlet zones are kept as XML text, their #expressions evaluated. */
+/* <boxfill>all^top</boxfill> draws what "bottom | left | right | front | back" draws; shapes after
+ * <setactive drawpoints="0"> paint nothing until <resetdraw>. */
+START_TEST(boxfill_except_and_setactive)
+{
+    const char *open_top = "<setmkbound mk=\"0\"/><drawbox><boxfill>all^top</boxfill>"
+                           "<point x=\"-0.1\" y=\"-1\" z=\"-0.1\"/><size x=\"1.2\" y=\"2\" z=\"1.1\"/></drawbox>";
+    vres_store *a = rd(mkcase("", DEF2D, WATER TANK, "", "")), *b;
+    ck_assert_ptr_nonnull(a);
+    char cmds[2048];
+    snprintf(cmds, sizeof cmds, "%s%s", WATER, open_top);
+    b = rd(mkcase("", DEF2D, cmds, "", ""));
+    ck_assert_ptr_nonnull(b);
+    ck_assert_uint_eq(vres_domain_count(&b->dom[0], VRES_FIXED), vres_domain_count(&a->dom[0], VRES_FIXED));
+    vres_store_free(b);
+    snprintf(cmds, sizeof cmds, "<setactive drawpoints=\"0\"/>%s<resetdraw/>%s", TANK, WATER);
+    b = rd(mkcase("", DEF2D, cmds, "", ""));
+    ck_assert_ptr_nonnull(b);
+    ck_assert_uint_eq(vres_domain_count(&b->dom[0], VRES_FIXED), 0);
+    ck_assert_uint_eq(vres_domain_count(&b->dom[0], VRES_FLUID), 66);
+    vres_store_free(b);
+    vres_store_free(a);
+}
+END_TEST
+
 START_TEST(special_kept)
 {
     vres_store *s = rd(mkcase("", DEF2D, WATER, "",
@@ -565,6 +592,7 @@ static Suite *suite(void)
     tcase_add_test(t, bodies);
     tcase_add_test(t, skips_and_refusals);
     tcase_add_test(t, special_kept);
+    tcase_add_test(t, boxfill_except_and_setactive);
     suite_add_tcase(su, t);
     return su;
 }
