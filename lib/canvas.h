@@ -121,6 +121,17 @@ void vres_paint_init(vres_paint *paint);
  * y = pmin[1] (pmin[1] must equal pmax[1]). Returns NULL after printing why (dp <= 0, not
  * finite, empty domain, more than 2^31 nodes, out of memory). */
 vres_canvas *vres_canvas_new(int dim, double dp, const double ref[3], const double pmin[3], const double pmax[3]);
+/* A canvas of spacing dp (lattice ref, domain [pmin, pmax]) holding only the nodes in the
+ * window [clo, chi] (a fine sub-domain never allocates the whole domain's fine lattice). It
+ * keeps alongside a whole-domain canvas at coarse_dp (lattice coarse_ref, domain [coarse_min,
+ * coarse_max]: the root's) on which every drawing is repeated, so that a fill started outside
+ * the window reaches the window's nodes it would reach on the whole lattice: the window's fill
+ * starts from its seed and from every fillable node whose nearest coarse node the coarse fill
+ * painted (connectivity through passages narrower than the coarse dp is not seen). Normals
+ * surfaces are measured on the window only. Returns NULL after printing why. */
+vres_canvas *vres_canvas_new_clipped(int dim, double dp, const double ref[3], const double pmin[3], const double pmax[3],
+                                     const double clo[3], const double chi[3], double coarse_dp,
+                                     const double coarse_ref[3], const double coarse_min[3], const double coarse_max[3]);
 /* Free a canvas (NULL is fine). */
 void vres_canvas_free(vres_canvas *c);
 

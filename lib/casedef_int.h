@@ -121,6 +121,9 @@ typedef struct cd_ctx {
     char *setname[CD_MAX_SETS]; /* file of each <shapeout> ("hdp") */
     int nsets;             /* number of <shapeout>s */
     int hidden;            /* shapes drawn with drawpoints="0" (for a note when nothing uses them) */
+    /* redrawing a sub-domain (vres_case_opts.clip, .root) */
+    const vres_clip *clip; /* the region drawn, NULL for the whole domain */
+    const vres_store *root;/* the case drawn whole at its root dp, NULL for a case of its own */
 } cd_ctx;
 
 /* ---- messages ---- */
