@@ -6,6 +6,7 @@
  * ("FILE: what is wrong"). HDF5's own error printing is switched off around both; the reason
  * HDF5 gives is taken from its error stack and folded into that one message. */
 #include "store.h"
+#include "store_int.h"
 #include "cli.h"
 #include "fileio.h"
 #include "log.h"
@@ -224,6 +225,7 @@ void vres_store_free(vres_store *s)
     for (size_t b = 0; b < s->nbodies; b++) free(s->body[b].seg);
     free(s->body);
     free(s->box);
+    vres_store_free_tree(s);
     free(s->gauges_xml);
     free(s->inout_xml);
     free(s->code);
@@ -704,6 +706,8 @@ static void write_model(wctx *w, hid_t f, const vres_store *s)
     write_domains(w, f, s);
     write_bodies(w, f, s);
     write_boxes(w, f, s);
+    char why[200];
+    if (!w->bad && vres_store_ext_write(f, s, why, sizeof why) != 0) wfail(w, -1, why, 0); /* store_iface.c */
     if (s->gauges_xml) write_xml_group(w, f, "Gauges", s->gauges_xml);
     if (s->inout_xml) write_xml_group(w, f, "InOut", s->inout_xml);
 }
@@ -1464,6 +1468,8 @@ static void read_model(rctx *r, hid_t f, vres_store *s)
     read_domains(r, f, s);
     read_bodies(r, f, s);
     read_boxes(r, f, s);
+    char why[400];
+    if (!r->bad && vres_store_ext_read(f, s, why, sizeof why) != 0) rerr(r, "%s", why); /* store_iface.c */
     s->gauges_xml = read_xml_group(r, f, "Gauges");
     s->inout_xml = read_xml_group(r, f, "InOut");
 }
