@@ -1213,3 +1213,44 @@ vres_store *vres_case_redraw(const vres_store *s, double dp, const vres_clip *cl
     free(ov);
     return r;
 }
+
+int vres_case_lattice(const vres_store *s, double dp, double ref[3])
+{
+    cd_ctx C;
+    memset(&C, 0, sizeof C);
+    cd_ctx *c = &C;
+    char *src = vres_xasprintf("%s.xml", s->name ? s->name : "case");
+    c->src = src;
+    c->dp_origin = "xml";
+    c->root = s; /* quiet notes */
+    const char **ov = vres_xcalloc((unsigned long)s->noverrides + 1, sizeof *ov);
+    for (int i = 0; i < s->noverrides; i++) ov[i] = s->overrides[i];
+    vres_case_opts o = {dp, s->noverrides, ov, NULL, NULL};
+    take_overrides(c, &o);
+    cd_parts p;
+    xmlDocPtr doc = s->case_xml ? parse_xml(c, s->case_xml, strlen(s->case_xml)) : NULL;
+    xmlNodePtr root = doc ? xmlDocGetRootElement(doc) : NULL;
+    int rc = -1;
+    if (root && !c->nerr) {
+        c->vars = vres_vars_new();
+        char err[128];
+        vres_vars_set_str(c->vars, "CaseName", s->name ? s->name : "case", 0, err, sizeof err);
+        if (find_parts(c, root, &p) == 0) {
+            read_predefinition(c, single(c, p.geometry, "predefinition"));
+            xmlNodePtr def = single(c, p.geometry, "definition");
+            if (def) read_definition(c, def);
+            if (c->have_def && !c->nerr) {
+                memcpy(ref, c->ref, sizeof c->ref);
+                rc = 0;
+            }
+        }
+    }
+    if (rc && !c->nerr) vres_error("%s: cannot read the lattice of the case at dp %g", src, dp);
+    if (doc) xmlFreeDoc(doc);
+    vres_vars_free(c->vars);
+    for (int i = 0; i < c->nov; i++) free(c->ov[i].name), free(c->ov[i].value);
+    free(c->ov);
+    free(ov);
+    free(src);
+    return rc;
+}

@@ -48,6 +48,10 @@ vres_store *vres_case_read(const char *xml, size_t len, const char *src, const c
  * printing why. */
 vres_store *vres_case_redraw(const vres_store *s, double dp, const vres_clip *clip);
 
+/* The lattice reference point (pointref, which a case may write in terms of Dp) the case s
+ * holds has at spacing dp, read without drawing. Returns 0, or -1 after printing why. */
+int vres_case_lattice(const vres_store *s, double dp, double ref[3]);
+
 /* Pre-flight checks on a store made by vres_case_read (vres-gencase --check): buffers
  * narrower than 2h, boxes reaching outside their parent, wall particles inside a buffer band
  * without a normal, fluid outside the simulation domain, fluid closer than dp/2 to a wall.
