@@ -373,10 +373,8 @@ static void copy_particle(vres_domain *dst, const vres_domain *src, size_t i, in
  * buffer stay. Returns the number of fluid particles dropped. */
 static size_t sort_domain(const plan *p, int k, const vres_domain *src, vres_domain *dst)
 {
-    const vres_region *reg = NULL;
-    vres_region *all = vres_xmalloc(sizeof *all * (size_t)p->n);
-    for (int j = 0; j < p->n; j++) all[j] = p->d[j].reg;
-    reg = all;
+    vres_region *reg = vres_xmalloc(sizeof *reg * (size_t)p->n); /* the regions side by side, as the run has them */
+    for (int j = 0; j < p->n; j++) reg[j] = p->d[j].reg;
     double support = 2 * p->d[k].h;
     size_t dropped = 0;
     vres_domain_reserve(dst, src->n);
@@ -394,7 +392,7 @@ static size_t sort_domain(const plan *p, int k, const vres_domain *src, vres_dom
         }
         copy_particle(dst, src, i, t == VRES_INLET ? t : cls == VRES_REGION_BUFFER ? VRES_BUFFER : VRES_FLUID);
     }
-    free(all);
+    free(reg);
     return dropped;
 }
 

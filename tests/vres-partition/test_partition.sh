@@ -86,3 +86,20 @@ check "dam break: the column stays whole in D0" grep -q "D0: dp 0.005 m, 7200 fl
 check "dam break: D1 holds the wall at its dp" grep -q "D1: dp 0.0025 m, 0 fluid, 0 buffer, 1185 walls" "$ERR"
 values /Domains/D1/Normal "$T/dbp.h5" | paste - - - >"$T/dbn"
 check "dam break: every wall of D1 has its mDBC normal" [ "$(awk '$1 == 0 && $3 == 0' "$T/dbn" | wc -l)" -eq 0 ]
+
+# the same dam break without its widened domain: the box is cut at the floor (z = -0.0125, the
+# lowest wall layer), so no segment lies on the floor side: the child's band below the domain
+# is dropped (its bottom edge and the 3 lowest segments of each side), and the root has no
+# band on that side (its inner box reaches the cut face) nor segments there
+sed 's|z="default - 0.05"|z="default"|' "$CASES/dambreak2d/dambreak2d_Def.xml" >"$T/floor.xml"
+"$BIN/vres-gencase" -q "$T/floor.xml" -o "$T/floor.h5"
+expect 0 "the dam break cut at the floor partitions" "$ASAN/vres-partition" "$T/floor.h5" -o "$T/floorp.h5"
+values /Interfaces/I0/Position "$T/floorp.h5" | paste - - - >"$T/f0"
+values /Interfaces/I0/Normal "$T/floorp.h5" | paste - - - >"$T/fn0"
+values /Interfaces/I1/Normal "$T/floorp.h5" | paste - - - >"$T/fn1"
+check "child's band: 170 top + 2 x (271 - 3) sides = 706 segments" [ "$(wc -l <"$T/f0")" -eq 706 ]
+check "child's band: none below the domain" [ "$(awk '$3 < -0.0125 - 1e-9' "$T/f0" | wc -l)" -eq 0 ]
+check "child's band: no bottom edge" [ "$(awk '$3 == -1' "$T/fn0" | wc -l)" -eq 0 ]
+check "root's band: 2 x 130 sides + 76 top = 336 segments, none on the floor side" \
+    [ "$(wc -l <"$T/fn1") $(awk '$3 == 1' "$T/fn1" | wc -l)" = "336 0" ]
+check "root's inner box reaches the cut face" [ "$(attr /Domains/D1/inner_min "$T/floorp.h5" | cut -d' ' -f3)" = "$(attr /Domains/D1/hole_min "$T/floorp.h5" | cut -d' ' -f3)" ]
