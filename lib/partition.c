@@ -144,7 +144,7 @@ static int box_depth(const vres_store *s, int b)
 }
 
 /* The domains: the root, then the kept boxes (parents before children) with the options. */
-static int choose(plan *p, const vres_part_opts *o)
+static void choose(plan *p, const vres_part_opts *o)
 {
     vres_store *s = p->s;
     const vres_domain *r = &s->dom[0];
@@ -175,7 +175,6 @@ static int choose(plan *p, const vres_part_opts *o)
         }
     }
     free(dom_of);
-    return 0;
 }
 
 /* The fitted boxes of child k (see kernels/region.h). Returns 0, or -1 after reporting. */
