@@ -51,6 +51,10 @@ struct vres_canvas {
     uint8_t *st;   /* [nnodes] VRES_PAINT_* state plus ST_HASN */
     int32_t *mk;   /* [nnodes] mk of fluid and bound nodes, 0 for void */
     nmap nm;       /* normals of wall nodes */
+    nmap sm;       /* normals pass: nearest surface vector of each bound node measured so far */
+    struct vres_canvas *coarse; /* clipped canvas: the whole domain at a coarser dp, drawn alongside
+                                   so that fills know the connectivity outside the window */
+    double smax;   /* normals pass: largest distance measured (m), 0 when no pass is open */
     int failed;    /* 1 once a drawing was refused as bad input */
 };
 
@@ -312,6 +316,37 @@ vres_canvas *vres_canvas_new(int dim, double dp, const double ref[3], const doub
     return c;
 }
 
+vres_canvas *vres_canvas_new_clipped(int dim, double dp, const double ref[3], const double pmin[3], const double pmax[3],
+                                     const double clo[3], const double chi[3], double coarse_dp,
+                                     const double coarse_ref[3], const double coarse_min[3], const double coarse_max[3])
+{
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        lo[a] = pmin[a], hi[a] = pmax[a];
+        if (dim == 2 && a == 1) continue; /* the node plane */
+        if (!isfinite(clo[a]) || !isfinite(chi[a]) || !(chi[a] >= clo[a])) {
+            vres_error("drawing window: its corners must be finite and ordered (axis %c)", "xyz"[a]);
+            return NULL;
+        }
+        if (clo[a] > lo[a]) lo[a] = clo[a];
+        if (chi[a] < hi[a]) hi[a] = chi[a];
+        if (!(hi[a] >= lo[a])) {
+            vres_error("drawing window: (%g, %g, %g) to (%g, %g, %g) lies outside the domain along %c", clo[0], clo[1],
+                       clo[2], chi[0], chi[1], chi[2], "xyz"[a]);
+            return NULL;
+        }
+    }
+    vres_canvas *k = vres_canvas_new(dim, coarse_dp, coarse_ref, coarse_min, coarse_max);
+    if (!k) return NULL;
+    vres_canvas *c = vres_canvas_new(dim, dp, ref, lo, hi);
+    if (!c) {
+        vres_canvas_free(k);
+        return NULL;
+    }
+    c->coarse = k;
+    return c;
+}
+
 void vres_canvas_free(vres_canvas *c)
 {
     if (!c) return;
@@ -319,6 +354,9 @@ void vres_canvas_free(vres_canvas *c)
     free(c->mk);
     free(c->nm.key);
     free(c->nm.val);
+    free(c->sm.key);
+    free(c->sm.val);
+    vres_canvas_free(c->coarse);
     free(c);
 }
 
@@ -400,6 +438,8 @@ static int prepare(vres_canvas *c, const vres_paint *pt, layering *L, const char
         if (!isfinite(pt->matrix[i])) bad = "transform matrix is not finite";
     for (int i = 0; !bad && i < pt->nlayers; i++)
         if (!isfinite(pt->layers[i])) bad = "layer offset is not finite";
+    if (!bad && pt->surface && pt->nlayers > 1) bad = "a normals surface takes one layer offset";
+    if (!bad && pt->surface && !(c->smax > 0)) bad = "a normals surface outside a normals pass";
     if (bad) {
         vres_error("%s: %s", cmd, bad);
         c->failed = 1;
@@ -415,6 +455,10 @@ static int prepare(vres_canvas *c, const vres_paint *pt, layering *L, const char
         if (L->side * L->off[i] > far) far = L->side * L->off[i];
     }
     L->cif = far + c->dp / 2;
+    if (pt->surface) { /* the surface itself: the shape grown by its offset, outward */
+        L->side = 1;
+        L->cif = L->off[0];
+    }
     return 1;
 }
 
@@ -437,9 +481,82 @@ static unsigned mode_classes(int mode)
     }
 }
 
-/* Paint the nodes of shape d that any layer puts in a class the draw mode wants. */
+/* Normals pass: the vector from every bound node within c->smax of shape d's surface to it,
+ * kept when nearer than what an earlier surface gave. Returns the nodes measured. */
+static size_t measure(vres_canvas *c, const drawer *d, const layering *L)
+{
+    size_t r0[3], r1[3];
+    double g = c->smax, tie = TIE * c->dp;
+    for (int a = 0; a < 3; a++)
+        if (!axis_range(c, a, d->lo[a] - g, d->hi[a] + g, &r0[a], &r1[a])) return 0;
+    size_t count = 0;
+    for (size_t k = r0[2]; k <= r1[2]; k++)
+        for (size_t j = r0[1]; j <= r1[1]; j++) {
+            size_t row = c->n[0] * (j + c->n[1] * k);
+            for (size_t i = r0[0]; i <= r1[0]; i++) {
+                if ((c->st[row + i] & ST_STATE) != VRES_PAINT_BOUND) continue;
+                double p[3], nv[3];
+                node_pos(c, i, j, k, p);
+                d->normal(d->sh, p, L->side, L->cif, nv);
+                if (c->dim == 2) nv[1] = 0;
+                double l2 = dot3(nv, nv);
+                if (l2 > (g + tie) * (g + tie)) continue;
+                const float *old = nm_get(&c->sm, row + i);
+                if (old && (double)old[0] * old[0] + (double)old[1] * old[1] + (double)old[2] * old[2] <= l2) continue;
+                float v[3] = {(float)nv[0], (float)nv[1], (float)nv[2]};
+                nm_put(&c->sm, row + i, v);
+                count++;
+            }
+        }
+    return count;
+}
+
+int vres_canvas_surface_begin(vres_canvas *c, double maxdist)
+{
+    if (!c) return -1;
+    if (!(maxdist > 0) || !isfinite(maxdist)) {
+        vres_error("normals: the largest distance to the geometry must be a positive number (got %g)", maxdist);
+        c->failed = 1;
+        return -1;
+    }
+    free(c->sm.key), free(c->sm.val);
+    if (nm_init(&c->sm, 10)) {
+        vres_error("out of memory for wall normals");
+        exit(1);
+    }
+    c->smax = maxdist;
+    return 0;
+}
+
+size_t vres_canvas_surface_end(vres_canvas *c, double maxsize)
+{
+    if (!c || !(c->smax > 0)) return 0;
+    size_t count = 0;
+    static const float zero[3] = {0, 0, 0};
+    for (size_t idx = 0; idx < c->nnodes; idx++) {
+        if ((c->st[idx] & ST_STATE) != VRES_PAINT_BOUND) continue;
+        const float *v = nm_get(&c->sm, idx);
+        double l = v ? sqrt((double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2]) : 0;
+        if (v && (maxsize <= 0 || l <= maxsize)) {
+            float w[3] = {v[0], v[1], v[2]};
+            nm_put(&c->nm, idx, w);
+            c->st[idx] |= ST_HASN;
+            count++;
+        } else if (c->st[idx] & ST_HASN) {
+            nm_put(&c->nm, idx, zero);
+        }
+    }
+    free(c->sm.key), free(c->sm.val);
+    memset(&c->sm, 0, sizeof c->sm);
+    c->smax = 0;
+    return count;
+}
+
+/* Paint the nodes of shape d that any layer puts in a class the draw mode wants (or, for a
+ * normals surface, measure the bound nodes' vectors to it). */
 static size_t draw(vres_canvas *c, const vres_paint *pt, const drawer *d, const layering *L)
 {
+    if (pt->surface) return measure(c, d, L);
     size_t r0[3], r1[3];
     for (int a = 0; a < 3; a++)
         if (!axis_range(c, a, d->lo[a], d->hi[a], &r0[a], &r1[a])) return 0;
@@ -582,6 +699,7 @@ static void box_normal(const void *sh, const double p[3], int side, double cif, 
 size_t vres_canvas_box(vres_canvas *c, const vres_paint *paint, const double p[3], const double size[3], unsigned boxfill)
 {
     static const char *cmd = "drawbox";
+    if (c && c->coarse && !paint->surface) vres_canvas_box(c->coarse, paint, p, size, boxfill);
     layering L;
     if (!c || !prepare(c, paint, &L, cmd)) return 0;
     if (!boxfill || (boxfill & ~0x7fu)) return refuse(c, cmd, "boxfill names no known face (solid, bottom, top, ...)");
@@ -704,6 +822,7 @@ size_t vres_canvas_cylinder(vres_canvas *c, const vres_paint *paint, const doubl
                             double radius, unsigned mask)
 {
     static const char *cmd = "drawcylinder";
+    if (c && c->coarse && !paint->surface) vres_canvas_cylinder(c->coarse, paint, p1, p2, radius, mask);
     layering L;
     if (!c || !prepare(c, paint, &L, cmd)) return 0;
     if (!(radius > 0) || !isfinite(radius)) return refuse(c, cmd, "radius must be a positive number");
@@ -958,6 +1077,7 @@ size_t vres_canvas_extrude(vres_canvas *c, const vres_paint *paint, int np, cons
                            const double ext[3], int closed)
 {
     static const char *cmd = "drawextrude";
+    if (c && c->coarse && !paint->surface) vres_canvas_extrude(c->coarse, paint, np, pts, ext, closed);
     layering L;
     if (!c || !prepare(c, paint, &L, cmd)) return 0;
     if (np < (closed ? 3 : 2)) return refuse(c, cmd, closed ? "a closed extrusion needs at least 3 points"
@@ -988,6 +1108,7 @@ typedef struct planesh {
     double nv[3];        /* right-hand unit normal of the vertex order */
     const double *off;   /* [layers] offsets along nv (m) */
     double h, tie;       /* half dp, tie tolerance (m) */
+    int clamp;           /* normals surface: the vector goes to the polygon, not its whole plane */
 } planesh;
 
 /* Classes of p for the polygon moved along its normal by the layer's offset. */
@@ -1010,6 +1131,11 @@ static void plane_normal(const void *sh, const double p[3], int side, double cif
     double w[3] = {p[0] - P->org[0], p[1] - P->org[1], p[2] - P->org[2]};
     double df = side * dot3(w, P->nv);
     for (int k = 0; k < 3; k++) n[k] = (cif - df) * side * P->nv[k];
+    if (!P->clamp) return; /* painted nodes lie on the polygon: its plane is the surface */
+    double u = dot3(w, P->e1), v = dot3(w, P->e2);
+    if (polygon_inside((const double (*)[2])P->q, P->np, u, v)) return;
+    near2 nr = polyline_nearest((const double (*)[2])P->q, P->np, 1, u, v);
+    for (int k = 0; k < 3; k++) n[k] += (nr.pt[0] - u) * P->e1[k] + (nr.pt[1] - v) * P->e2[k];
 }
 
 /* The 3D drawpolygon: a planar face. */
@@ -1060,6 +1186,7 @@ static size_t plane_polygon(vres_canvas *c, const vres_paint *paint, int np, con
         P.q[i][0] = dot3(r, P.e1), P.q[i][1] = dot3(r, P.e2);
     }
     P.off = L->off;
+    P.clamp = paint->surface;
     P.h = c->dp / 2;
     P.tie = TIE * c->dp;
     double offlo = 0, offhi = 0;
@@ -1076,6 +1203,7 @@ static size_t plane_polygon(vres_canvas *c, const vres_paint *paint, int np, con
 size_t vres_canvas_polygon(vres_canvas *c, const vres_paint *paint, int np, const double (*pts)[3])
 {
     static const char *cmd = "drawpolygon";
+    if (c && c->coarse && !paint->surface) vres_canvas_polygon(c->coarse, paint, np, pts);
     layering L;
     if (!c || !prepare(c, paint, &L, cmd)) return 0;
     if (np < 3) return refuse(c, cmd, "needs at least 3 points");
@@ -1096,56 +1224,28 @@ size_t vres_canvas_polygon(vres_canvas *c, const vres_paint *paint, int np, cons
 
 /* ------------------------------------------------------------------ fill */
 
-size_t vres_canvas_fill(vres_canvas *c, const vres_paint *paint, const double seed[3], const double bmin[3],
-                        const double bmax[3], unsigned modefill)
+/* The bitmap helpers of the flood fill: bit idx of a set. */
+static int bit_get(const uint8_t *b, size_t idx) { return b[idx >> 3] >> (idx & 7) & 1; }
+/* Set bit idx. */
+static void bit_set(uint8_t *b, size_t idx) { b[idx >> 3] |= (uint8_t)(1u << (idx & 7)); }
+
+/* Flood fill from the nseed nodes seeds through face-neighbours in the local index box
+ * [r0, r1] whose state is in modefill, painting them; seen (nnodes bits, zeroed) gets every
+ * node painted. Returns the number painted. */
+static size_t flood(vres_canvas *c, const vres_paint *paint, unsigned modefill, const size_t r0[3], const size_t r1[3],
+                    const size_t *seeds, size_t nseed, uint8_t *seen)
 {
-    static const char *cmd = "fill";
-    layering L;
-    if (!c || !prepare(c, paint, &L, cmd)) return 0;
-    if (modefill & VRES_FILL_BORDER) return refuse(c, cmd, "modefill border is not supported");
-    if (!modefill || (modefill & ~7u)) return refuse(c, cmd, "modefill names no node kind (void, fluid, bound)");
-    for (int a = 0; a < 3; a++)
-        if (!isfinite(seed[a]) || (bmin && !isfinite(bmin[a])) || (bmax && !isfinite(bmax[a])))
-            return refuse(c, cmd, "the seed point and box must be finite");
-    /* node range allowed: the box's nodes, its corners snapped to the nearest node */
-    size_t r0[3] = {0, 0, 0}, r1[3] = {c->n[0] - 1, c->n[1] - 1, c->n[2] - 1};
-    if (bmin && bmax)
-        for (int a = 0; a < 3; a++) {
-            if (c->dim == 2 && a == 1) continue;
-            double lo = fmin(bmin[a], bmax[a]) - c->dp / 2, hi = fmax(bmin[a], bmax[a]) + c->dp / 2;
-            if (!axis_range(c, a, lo, hi, &r0[a], &r1[a])) {
-                vres_warn("%s: the fill box holds no node of the domain; nothing filled", cmd);
-                return 0;
-            }
-        }
-    size_t s[3] = {0, 0, 0};
-    for (int a = 0; a < 3; a++) {
-        if (c->dim == 2 && a == 1) continue;
-        double f = floor((seed[a] - c->ref[a]) / c->dp + 0.5) - (double)c->org[a];
-        if (!(f >= (double)r0[a] && f <= (double)r1[a])) {
-            vres_warn("%s: the seed point (%g, %g, %g) is outside the domain or the fill box; nothing filled", cmd, seed[0],
-                      seed[1], seed[2]);
-            return 0;
-        }
-        s[a] = (size_t)f;
-    }
     size_t sx = c->n[0], sxy = c->n[0] * c->n[1];
-    size_t idx = s[0] + sx * (s[1] + c->n[1] * s[2]);
-    unsigned st = c->st[idx] & ST_STATE;
-    if (!(modefill & (1u << st))) {
-        static const char *names[] = {"void", "fluid", "bound"};
-        vres_warn("%s: the seed point (%g, %g, %g) falls on a %s node, which modefill does not fill; nothing filled", cmd,
-                  seed[0], seed[1], seed[2], names[st]);
-        return 0;
-    }
-    uint8_t *seen = calloc(c->nnodes / 8 + 1, 1);
-    size_t cap = 4096, top = 0, count = 0, *stack = malloc(cap * sizeof *stack);
-    if (!seen || !stack) {
-        vres_error("%s: out of memory", cmd);
+    size_t cap = 4096 + nseed, top = 0, count = 0, *stack = malloc(cap * sizeof *stack);
+    if (!stack) {
+        vres_error("fill: out of memory");
         exit(1);
     }
-    stack[top++] = idx;
-    seen[idx >> 3] |= (uint8_t)(1u << (idx & 7));
+    for (size_t q = 0; q < nseed; q++)
+        if (!bit_get(seen, seeds[q])) {
+            bit_set(seen, seeds[q]);
+            stack[top++] = seeds[q];
+        }
     while (top) {
         size_t n = stack[--top];
         size_t i = n % sx, j = (n / sx) % c->n[1], k = n / sxy;
@@ -1161,13 +1261,13 @@ size_t vres_canvas_fill(vres_canvas *c, const vres_paint *paint, const double se
         if (k < r1[2]) nb[m++] = n + sxy;
         for (int q = 0; q < m; q++) {
             size_t x = nb[q];
-            if (seen[x >> 3] & (1u << (x & 7)) || !(modefill & (1u << (c->st[x] & ST_STATE)))) continue;
-            seen[x >> 3] |= (uint8_t)(1u << (x & 7));
+            if (bit_get(seen, x) || !(modefill & (1u << (c->st[x] & ST_STATE)))) continue;
+            bit_set(seen, x);
             if (top == cap) {
                 cap *= 2;
                 stack = realloc(stack, cap * sizeof *stack);
                 if (!stack) {
-                    vres_error("%s: out of memory", cmd);
+                    vres_error("fill: out of memory");
                     exit(1);
                 }
             }
@@ -1175,6 +1275,118 @@ size_t vres_canvas_fill(vres_canvas *c, const vres_paint *paint, const double se
         }
     }
     free(stack);
+    return count;
+}
+
+/* Local index range [r0, r1] of a fill box (NULL: the whole canvas), its corners snapped to the
+ * nearest node; 0 when it holds no node. */
+static int fill_range(const vres_canvas *c, const double *bmin, const double *bmax, size_t r0[3], size_t r1[3])
+{
+    for (int a = 0; a < 3; a++) r0[a] = 0, r1[a] = c->n[a] - 1;
+    if (!bmin || !bmax) return 1;
+    for (int a = 0; a < 3; a++) {
+        if (c->dim == 2 && a == 1) continue;
+        double lo = fmin(bmin[a], bmax[a]) - c->dp / 2, hi = fmax(bmin[a], bmax[a]) + c->dp / 2;
+        if (!axis_range(c, a, lo, hi, &r0[a], &r1[a])) return 0;
+    }
+    return 1;
+}
+
+/* Node index of the node nearest point x when it lies in the local index box [r0, r1]; -1
+ * otherwise (SIZE_MAX). */
+static size_t nearest_in(const vres_canvas *c, const double x[3], const size_t r0[3], const size_t r1[3])
+{
+    size_t s[3] = {0, 0, 0};
+    for (int a = 0; a < 3; a++) {
+        if (c->dim == 2 && a == 1) continue;
+        double f = floor((x[a] - c->ref[a]) / c->dp + 0.5) - (double)c->org[a];
+        if (!(f >= (double)r0[a] && f <= (double)r1[a])) return SIZE_MAX;
+        s[a] = (size_t)f;
+    }
+    return s[0] + c->n[0] * (s[1] + c->n[1] * s[2]);
+}
+
+/* A clipped canvas' fill: the fill runs on the whole-domain coarse canvas first, which knows
+ * the connectivity outside the window; the window's fill then starts from the seed (when it
+ * lies in the window) and from every fillable node whose nearest coarse node that fill
+ * painted. Returns the nodes painted in the window. */
+static size_t clipped_fill(vres_canvas *c, const vres_paint *paint, const double seed[3], const double bmin[3],
+                           const double bmax[3], unsigned modefill)
+{
+    vres_canvas *k = c->coarse;
+    size_t kr0[3], kr1[3], r0[3], r1[3];
+    if (!fill_range(k, bmin, bmax, kr0, kr1)) return 0; /* nor in the window, which is inside it */
+    size_t kseed = nearest_in(k, seed, kr0, kr1);
+    uint8_t *kseen = calloc(k->nnodes / 8 + 1, 1), *seen = calloc(c->nnodes / 8 + 1, 1);
+    if (!kseen || !seen) {
+        vres_error("fill: out of memory");
+        exit(1);
+    }
+    if (kseed != SIZE_MAX && (modefill & (1u << (k->st[kseed] & ST_STATE))))
+        flood(k, paint, modefill, kr0, kr1, &kseed, 1, kseen);
+    size_t count = 0;
+    if (fill_range(c, bmin, bmax, r0, r1)) {
+        size_t nseed = 0, cap = 1024, *seeds = malloc(cap * sizeof *seeds);
+        size_t own = nearest_in(c, seed, r0, r1);
+        if (!seeds) exit(1);
+        if (own != SIZE_MAX && (modefill & (1u << (c->st[own] & ST_STATE)))) seeds[nseed++] = own;
+        for (size_t kk = r0[2]; kk <= r1[2]; kk++)
+            for (size_t j = r0[1]; j <= r1[1]; j++)
+                for (size_t i = r0[0]; i <= r1[0]; i++) {
+                    size_t idx = i + c->n[0] * (j + c->n[1] * kk);
+                    if (!(modefill & (1u << (c->st[idx] & ST_STATE)))) continue;
+                    double p[3];
+                    node_pos(c, i, j, kk, p);
+                    size_t q = nearest_in(k, p, kr0, kr1);
+                    if (q == SIZE_MAX || !bit_get(kseen, q)) continue;
+                    if (nseed == cap) seeds = realloc(seeds, (cap *= 2) * sizeof *seeds);
+                    if (!seeds) exit(1);
+                    seeds[nseed++] = idx;
+                }
+        count = flood(c, paint, modefill, r0, r1, seeds, nseed, seen);
+        free(seeds);
+    }
+    free(seen);
+    free(kseen);
+    return count;
+}
+
+size_t vres_canvas_fill(vres_canvas *c, const vres_paint *paint, const double seed[3], const double bmin[3],
+                        const double bmax[3], unsigned modefill)
+{
+    static const char *cmd = "fill";
+    layering L;
+    if (!c || !prepare(c, paint, &L, cmd)) return 0;
+    if (modefill & VRES_FILL_BORDER) return refuse(c, cmd, "modefill border is not supported");
+    if (!modefill || (modefill & ~7u)) return refuse(c, cmd, "modefill names no node kind (void, fluid, bound)");
+    for (int a = 0; a < 3; a++)
+        if (!isfinite(seed[a]) || (bmin && !isfinite(bmin[a])) || (bmax && !isfinite(bmax[a])))
+            return refuse(c, cmd, "the seed point and box must be finite");
+    if (c->coarse) return clipped_fill(c, paint, seed, bmin, bmax, modefill);
+    size_t r0[3], r1[3];
+    if (!fill_range(c, bmin, bmax, r0, r1)) {
+        vres_warn("%s: the fill box holds no node of the domain; nothing filled", cmd);
+        return 0;
+    }
+    size_t idx = nearest_in(c, seed, r0, r1);
+    if (idx == SIZE_MAX) {
+        vres_warn("%s: the seed point (%g, %g, %g) is outside the domain or the fill box; nothing filled", cmd, seed[0],
+                  seed[1], seed[2]);
+        return 0;
+    }
+    unsigned st = c->st[idx] & ST_STATE;
+    if (!(modefill & (1u << st))) {
+        static const char *names[] = {"void", "fluid", "bound"};
+        vres_warn("%s: the seed point (%g, %g, %g) falls on a %s node, which modefill does not fill; nothing filled", cmd,
+                  seed[0], seed[1], seed[2], names[st]);
+        return 0;
+    }
+    uint8_t *seen = calloc(c->nnodes / 8 + 1, 1);
+    if (!seen) {
+        vres_error("%s: out of memory", cmd);
+        exit(1);
+    }
+    size_t count = flood(c, paint, modefill, r0, r1, &idx, 1, seen);
     free(seen);
     return count;
 }

@@ -103,6 +103,11 @@ typedef struct vres_paint {
     double matrix[16];    /* current transform (move/rotate/scale), row-major 4x4, applied to shape points */
     int nlayers;          /* number of layer offsets for the next shape (0: just the surface) */
     double layers[VRES_MAX_LAYERS]; /* layer offsets in units of dp along the shape's outward normal */
+    int surface;          /* 1: the shape is a normals surface (GenCase's geometry drawn with
+                             setactive drawpoints="0" and named by <normals>): it paints nothing and
+                             measures, between vres_canvas_surface_begin and _end, the vector from
+                             each bound node to its surface (the shape grown by its one layer
+                             offset, outward as for layers, whatever setnormalinvert says) */
 } vres_paint;
 
 /* Opaque lattice. */
@@ -116,6 +121,17 @@ void vres_paint_init(vres_paint *paint);
  * y = pmin[1] (pmin[1] must equal pmax[1]). Returns NULL after printing why (dp <= 0, not
  * finite, empty domain, more than 2^31 nodes, out of memory). */
 vres_canvas *vres_canvas_new(int dim, double dp, const double ref[3], const double pmin[3], const double pmax[3]);
+/* A canvas of spacing dp (lattice ref, domain [pmin, pmax]) holding only the nodes in the
+ * window [clo, chi] (a fine sub-domain never allocates the whole domain's fine lattice). It
+ * keeps alongside a whole-domain canvas at coarse_dp (lattice coarse_ref, domain [coarse_min,
+ * coarse_max]: the root's) on which every drawing is repeated, so that a fill started outside
+ * the window reaches the window's nodes it would reach on the whole lattice: the window's fill
+ * starts from its seed and from every fillable node whose nearest coarse node the coarse fill
+ * painted (connectivity through passages narrower than the coarse dp is not seen). Normals
+ * surfaces are measured on the window only. Returns NULL after printing why. */
+vres_canvas *vres_canvas_new_clipped(int dim, double dp, const double ref[3], const double pmin[3], const double pmax[3],
+                                     const double clo[3], const double chi[3], double coarse_dp,
+                                     const double coarse_ref[3], const double coarse_min[3], const double coarse_max[3]);
 /* Free a canvas (NULL is fine). */
 void vres_canvas_free(vres_canvas *c);
 
@@ -153,6 +169,15 @@ size_t vres_canvas_extrude(vres_canvas *c, const vres_paint *paint, int np, cons
  * its node is not fillable. VRES_FILL_BORDER is refused (bad input). */
 size_t vres_canvas_fill(vres_canvas *c, const vres_paint *paint, const double seed[3], const double bmin[3],
                         const double bmax[3], unsigned modefill);
+
+/* Begin a normals pass: drawings with paint->surface set measure, for each bound node within
+ * maxdist (m) of their surface, the vector to the nearest point of it; the nearest of all the
+ * pass' surfaces wins. Returns 0, or -1 (message printed) when maxdist is not positive. */
+int vres_canvas_surface_begin(vres_canvas *c, double maxdist);
+/* End the pass: every bound node gets the vector measured for it as its normal, or none (zero)
+ * when no surface came within maxdist or the vector is longer than maxsize (m; <= 0: no
+ * limit), as GenCase's <normals><norgeometry> does. Returns the number of nodes given one. */
+size_t vres_canvas_surface_end(vres_canvas *c, double maxsize);
 
 /* 1 once a drawing was refused as bad input (its message already printed), else 0. */
 int vres_canvas_failed(const vres_canvas *c);

@@ -61,8 +61,10 @@ void cd_note(cd_ctx *c, xmlNodePtr node, const char *fmt, ...)
     va_start(ap, fmt);
     char *m = vfmt(fmt, ap);
     va_end(ap);
-    if (node) vres_info("%s:%ld: note: %s", c->src, xmlGetLineNo(node), m);
-    else vres_info("%s: note: %s", c->src, m);
+    /* a redrawing repeats the notes the whole case already gave: -v only */
+    void (*say)(const char *, ...) = c->root ? vres_debug : vres_info;
+    if (node) say("%s:%ld: note: %s", c->src, xmlGetLineNo(node), m);
+    else say("%s: note: %s", c->src, m);
     free(m);
 }
 
@@ -571,6 +573,11 @@ static double final_h(const cd_consts *k, int dim, double dp)
     return coefh * sqrt(dp * dp * dim);
 }
 
+double cd_h(const cd_ctx *c)
+{
+    return final_h(&c->k, c->dim, c->dp);
+}
+
 /* Variables GenCase offers once the constants are known (Rhop0, Gravity_x, H, MassFluid...). */
 static void predefine_consts(cd_ctx *c)
 {
@@ -742,12 +749,26 @@ static int colkey_cmp(const void *a, const void *b)
     return p->i < q->i ? -1 : p->i > q->i;
 }
 
+/* Mode 3's surface for a redrawn sub-domain: the root's highest fluid particle raised by
+ * (dp_root - dp)/2, the height of the finer lattice's top particle under the same surface on a
+ * cell-centred lattice (an approximation: the whole case is not drawn at the finer dp). */
+static double root_top(const cd_ctx *c)
+{
+    const vres_domain *d = &c->root->dom[0];
+    double zmax = -HUGE_VAL;
+    for (size_t i = 0; i < d->n; i++)
+        if (d->type[i] == VRES_FLUID && d->pos[3 * i + 2] > zmax) zmax = d->pos[3 * i + 2];
+    return zmax + (vres_params_get(&c->root->params, "dp", c->dp) - c->dp) / 2;
+}
+
 /* Initial density of the fluid by <rhopgradient> (DualSPHysics' comment: "1:Rhop0, 2:Water
  * column, 3:Max. water height"; GenCase's source is not public, so this is our reading):
  * 1 rho0 everywhere; 2 hydrostatic below the highest fluid particle of the particle's own
  * vertical lattice column; 3 hydrostatic below the highest fluid particle of the case. The
  * pressure p = rho0 |g_z| depth is turned into density with the inverse Tait equation, so
- * that the EOS gives back the hydrostatic pressure. Walls start at rho0. */
+ * that the EOS gives back the hydrostatic pressure. Walls start at rho0. A redrawn sub-domain
+ * is drawn up to the top of the domain above its window (new_clipped) so that mode 2 finds
+ * each column's own top, as a whole drawing at its dp would; mode 3 takes root_top. */
 static void initial_density(cd_ctx *c, vres_domain *d, double B)
 {
     const cd_consts *k = &c->k;
@@ -769,7 +790,7 @@ static void initial_density(cd_ctx *c, vres_domain *d, double B)
         if (p[2] > ztop) ztop = p[2];
     }
     qsort(ck, nf, sizeof *ck, colkey_cmp);
-    double top = ztop;
+    double top = c->root && mode == 3 ? root_top(c) : ztop;
     for (size_t j = 0; j < nf; j++) {
         if (mode == 2 && (j == 0 || ck[j].ix != ck[j - 1].ix || ck[j].iy != ck[j - 1].iy)) top = ck[j].z;
         double depth = top - ck[j].z;
@@ -778,13 +799,44 @@ static void initial_density(cd_ctx *c, vres_domain *d, double B)
     free(ck);
 }
 
+/* 1 when x lies strictly inside the box [lo, hi] on the case's axes. */
+static int inside_box(int dim, const double *x, const double *lo, const double *hi)
+{
+    for (int a = 0; a < 3; a++)
+        if ((dim == 3 || a != 1) && !(x[a] > lo[a] && x[a] < hi[a])) return 0;
+    return 1;
+}
+
+/* Keep the particles of the clip's window that lie in none of its inner boxes (in order): the
+ * canvas was drawn up to the domain's top for the water columns' density. */
+static void drop_holes(const cd_ctx *c, vres_domain *d)
+{
+    const vres_clip *k = c->clip;
+    size_t m = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        int in = d->pos[3 * i + 2] > k->hi[2] + 1e-9 * c->dp;
+        for (int h = 0; h < k->nholes && !in; h++) in = inside_box(c->dim, &d->pos[3 * i], k->hole_lo[h], k->hole_hi[h]);
+        if (in) continue;
+        if (m != i) {
+            memcpy(&d->pos[3 * m], &d->pos[3 * i], 3 * sizeof *d->pos);
+            memcpy(&d->vel[3 * m], &d->vel[3 * i], 3 * sizeof *d->vel);
+            memcpy(&d->normal[3 * m], &d->normal[3 * i], 3 * sizeof *d->normal);
+            d->rho[m] = d->rho[i], d->press[m] = d->press[i], d->mass_p[m] = d->mass_p[i];
+            d->type[m] = d->type[i], d->mk[m] = d->mk[i], d->id[m] = d->id[i];
+        }
+        m++;
+    }
+    d->n = m;
+    for (size_t i = 0; i < m; i++) d->id[i] = i;
+}
+
 /* Build the root domain from the painted canvas: particles, masses, density, pressure. */
 static int make_root(cd_ctx *c, xmlNodePtr geom, vres_store *s, double bbmin[3], double bbmax[3])
 {
     vres_domain tmp;
     memset(&tmp, 0, sizeof tmp);
     vres_canvas_emit(c->canvas, &tmp);
-    if (tmp.n == 0) {
+    if (tmp.n == 0 && !c->root) { /* a redrawn sub-domain may hold nothing (a box in the air) */
         cd_err(c, geom, "the geometry is empty: no particles were drawn inside pointmin..pointmax");
         vres_domain_free(&tmp);
         return -1;
@@ -812,6 +864,7 @@ static int make_root(cd_ctx *c, xmlNodePtr geom, vres_store *s, double bbmin[3],
     if (vres_device_eos(VRES_DEV_CPU, d->n, d->rho, d->press, rho0, B, c->k.v[CK_GAMMA][0]) != 0) return -1;
     for (size_t i = 0; i < d->n; i++)
         d->mass_p[i] = d->type[i] == VRES_FLUID ? c->k.v[CK_MASSFLUID][0] : c->k.v[CK_MASSBOUND][0];
+    if (c->clip) drop_holes(c, d); /* after the density, which needed the columns above */
     d->parent = -1;
     d->dp = c->dp;
     d->h = vres_params_get(&s->params, "h", 0);
@@ -927,7 +980,7 @@ static xmlNodePtr read_commands(cd_ctx *c, xmlNodePtr cmds)
 /* The main elements of a case, found once. */
 typedef struct cd_parts {
     xmlNodePtr casedef, exec;        /* <casedef>, <execution> */
-    xmlNodePtr constantsdef, mkconfig, geometry, floatings, motion, vres; /* in <casedef> */
+    xmlNodePtr constantsdef, mkconfig, geometry, floatings, motion, vres, normals; /* in <casedef> */
     xmlNodePtr commands, mainlist;   /* in <geometry> */
     xmlNodePtr parameters, special;  /* in <execution> */
 } cd_parts;
@@ -953,10 +1006,6 @@ static int find_parts(cd_ctx *c, xmlNodePtr root, cd_parts *p)
         cd_err(c, root, "<case> has no <casedef>");
         return -1;
     }
-    for (xmlNodePtr n = p->casedef->children; n; n = n->next)
-        if (cd_is_elem(n) && !strcmp(cd_name(n), "normals") && !cd_inactive(c, n))
-            cd_err(c, n, "element <normals> is not supported: vres computes wall normals from the drawn shapes "
-                         "(remove it or set active=\"false\")");
     cd_check_children(c, p->casedef, casedef_kids);
     cd_check_attrs(c, p->casedef, (const char *const[]){"requiredversion", NULL});
     p->constantsdef = single(c, p->casedef, "constantsdef");
@@ -965,6 +1014,7 @@ static int find_parts(cd_ctx *c, xmlNodePtr root, cd_parts *p)
     p->floatings = single(c, p->casedef, "floatings");
     p->motion = single(c, p->casedef, "motion");
     p->vres = single(c, p->casedef, "vres");
+    p->normals = single(c, p->casedef, "normals");
     if (!p->geometry) {
         cd_err(c, p->casedef, "<casedef> has no <geometry>");
         return -1;
@@ -985,6 +1035,61 @@ static void read_mkconfig(cd_ctx *c, xmlNodePtr mkconfig)
     cd_int(c, mkconfig, "fluidcount", 0, &c->fluidcount);
 }
 
+/* Take the root's resolved constants (vres_case_opts.root): the equation of state's hswl,
+ * speedsystem, speed of sound and B as they are, h and the masses scaled from the root's dp to
+ * this drawing's (h/dp and m/dp^dim stay). */
+static void keep_root_consts(cd_ctx *c)
+{
+    const vres_params *P = &c->root->params;
+    cd_consts *k = &c->k;
+    static const struct { int slot; const char *name; } same[] = {
+        {CK_HSWL, "hswl"}, {CK_SPEEDSYSTEM, "speedsystem"}, {CK_SPEEDSOUND, "cs0"}, {CK_B, "B"}};
+    for (size_t i = 0; i < sizeof same / sizeof same[0]; i++) {
+        const vres_param *q = vres_params_find(P, same[i].name);
+        if (!q || q->n < 1) continue;
+        k->v[same[i].slot][0] = q->v[0];
+        k->autov[same[i].slot] = 0;
+        k->origin[same[i].slot] = q->origin;
+    }
+    double dp0 = vres_params_get(P, "dp", c->dp), r = c->dp / dp0;
+    const vres_param *h = vres_params_find(P, "h"), *hdp = vres_params_find(P, "hdp");
+    if (h && hdp) {
+        k->v[CK_H][0] = hdp->v[0] * c->dp;
+        k->autov[CK_H] = 0;
+        k->origin[CK_H] = h->origin;
+    }
+    static const struct { int slot; const char *name; } scaled[] = {{CK_MASSFLUID, "massfluid"}, {CK_MASSBOUND, "massbound"}};
+    for (size_t i = 0; i < 2; i++) {
+        const vres_param *q = vres_params_find(P, scaled[i].name);
+        if (!q || q->n < 1) continue;
+        k->v[scaled[i].slot][0] = q->v[0] * pow(r, c->dim);
+        k->autov[scaled[i].slot] = 0;
+        k->origin[scaled[i].slot] = q->origin;
+    }
+}
+
+/* The clipped canvas of a redrawn sub-domain, with the root's lattice as its coarse companion. */
+static vres_canvas *new_clipped(cd_ctx *c)
+{
+    const vres_params *P = &c->root->params;
+    double ref0[3], min0[3], max0[3];
+    const char *names[3] = {"pointref", "pointmin", "pointmax"};
+    double *dst[3] = {ref0, min0, max0};
+    for (int i = 0; i < 3; i++) {
+        const vres_param *q = vres_params_find(P, names[i]);
+        if (!q || q->n != 3) {
+            cd_err(c, NULL, "the root store has no parameter %s: cannot redraw a sub-domain", names[i]);
+            return NULL;
+        }
+        memcpy(dst[i], q->v, 3 * sizeof(double));
+    }
+    /* mode 2 needs each water column's top: draw the column above the window too */
+    double hi[3] = {c->clip->hi[0], c->clip->hi[1], c->clip->hi[2]};
+    if ((int)c->k.v[CK_RHOPGRADIENT][0] == 2 && c->k.v[CK_GRAVITY][2] < 0 && c->pmax[2] > hi[2]) hi[2] = c->pmax[2];
+    return vres_canvas_new_clipped(c->dim, c->dp, c->ref, c->pmin, c->pmax, c->clip->lo, hi,
+                                   vres_params_get(P, "dp", c->dp), ref0, min0, max0);
+}
+
 /* Variables, definition and constants, then the commands painted on the lattice (only the
  * variables when the definition failed, so that later parts still resolve). */
 static void read_geometry(cd_ctx *c, cd_parts *p)
@@ -994,17 +1099,24 @@ static void read_geometry(cd_ctx *c, cd_parts *p)
     if (!def) cd_err(c, p->geometry, "<geometry> has no <definition>");
     else read_definition(c, def);
     read_constants(c, p->constantsdef);
+    if (c->root && c->have_def) keep_root_consts(c);
     predefine_consts(c);
     if (c->have_def) {
-        c->canvas = vres_canvas_new(c->dim, c->dp, c->ref, c->pmin, c->pmax);
+        c->canvas = c->clip ? new_clipped(c) : vres_canvas_new(c->dim, c->dp, c->ref, c->pmin, c->pmax);
         if (!c->canvas) c->nerr++; /* the canvas said why */
     }
     cd_scan_bodies(c, p->floatings, p->motion);
     vres_paint_init(&c->paint);
+    c->drawpoints = c->drawshapes = 1;
+    c->shapekinds = 7u;
     p->commands = single(c, p->geometry, "commands");
     p->mainlist = read_commands(c, p->commands);
     if (!p->commands) cd_err(c, p->geometry, "<geometry> has no <commands>: nothing is drawn");
     if (p->mainlist) cd_run_commands(c, p->mainlist);
+    if (p->normals && c->canvas && !c->nerr) cd_read_normals(c, p->normals);
+    else if (c->hidden && !p->normals)
+        cd_note(c, p->mainlist, "%d shape%s drawn with setactive drawpoints=\"0\" %s not used: the case has no "
+                "<normals>", c->hidden, c->hidden == 1 ? "" : "s", c->hidden == 1 ? "is" : "are");
 }
 
 /* The particles (when nothing went wrong so far) and the bodies made of them, then the
@@ -1018,10 +1130,17 @@ static void read_rest(cd_ctx *c, cd_parts *p, vres_store *s)
     if (c->canvas && !c->nerr &&
         make_root(c, p->mainlist ? p->mainlist : p->geometry, s, bbmin, bbmax) == 0) {
         have_root = 1;
-        cd_read_bodies(c, p->floatings, p->motion, s);
+        if (!c->root) cd_read_bodies(c, p->floatings, p->motion, s); /* a redrawing keeps the root's */
     }
-    if (p->vres && !cd_inactive(c, p->vres)) cd_read_vres(c, p->vres, s);
-    cd_read_parameters(c, p->parameters, s, have_root ? bbmin : NULL, have_root ? bbmax : NULL);
+    if (p->vres && !cd_inactive(c, p->vres) && !c->root) cd_read_vres(c, p->vres, s);
+    /* a redrawn sub-domain's particles do not span the domain: it stays the root's */
+    int own_domain = have_root && !c->root;
+    cd_read_parameters(c, p->parameters, s, own_domain ? bbmin : NULL, own_domain ? bbmax : NULL);
+    if (c->root) {
+        memcpy(s->domain_min, c->root->domain_min, sizeof s->domain_min);
+        memcpy(s->domain_max, c->root->domain_max, sizeof s->domain_max);
+    }
+    if (have_root && s->nboxes) cd_clip_boxes(c, s);
     if (p->special) cd_read_special(c, p->special, s);
     if (p->mainlist || !p->commands) cd_check_overrides_used(c);
     if (have_root) {
@@ -1038,6 +1157,12 @@ vres_store *vres_case_read(const char *xml, size_t len, const char *src, const c
     cd_ctx *c = &C;
     c->src = src ? src : "(case)";
     c->dp_origin = "xml";
+    c->clip = o ? o->clip : NULL;
+    c->root = o ? o->root : NULL;
+    if (c->clip && (!c->root || !c->root->ndomains)) {
+        vres_error("%s: a clipped drawing needs the root store drawn whole", c->src);
+        return NULL;
+    }
     take_overrides(c, o);
     vres_store *s = NULL;
     cd_parts p;
@@ -1063,10 +1188,69 @@ done:
     free(c->ov);
     free(c->float_mk);
     free(c->move_mk);
+    cd_free_shapes(c);
     if (c->nerr && s) {
         vres_store_free(s);
         s = NULL;
     }
     if (!s && !c->nerr) vres_error("%s: cannot read the case", c->src);
     return s;
+}
+
+vres_store *vres_case_redraw(const vres_store *s, double dp, const vres_clip *clip)
+{
+    if (!s->case_xml || !s->ndomains) {
+        vres_error("%s: the store holds no case to redraw (no /Geometry case_xml or no root domain)",
+                   s->name ? s->name : "store");
+        return NULL;
+    }
+    const char **ov = vres_xcalloc((unsigned long)s->noverrides + 1, sizeof *ov);
+    for (int i = 0; i < s->noverrides; i++) ov[i] = s->overrides[i]; /* "dp=..." loses to dp below */
+    vres_case_opts o = {dp, s->noverrides, ov, clip, s};
+    char *src = vres_xasprintf("%s.xml", s->name ? s->name : "case");
+    vres_store *r = vres_case_read(s->case_xml, strlen(s->case_xml), src, s->case_dir, &o);
+    free(src);
+    free(ov);
+    return r;
+}
+
+int vres_case_lattice(const vres_store *s, double dp, double ref[3])
+{
+    cd_ctx C;
+    memset(&C, 0, sizeof C);
+    cd_ctx *c = &C;
+    char *src = vres_xasprintf("%s.xml", s->name ? s->name : "case");
+    c->src = src;
+    c->dp_origin = "xml";
+    c->root = s; /* quiet notes */
+    const char **ov = vres_xcalloc((unsigned long)s->noverrides + 1, sizeof *ov);
+    for (int i = 0; i < s->noverrides; i++) ov[i] = s->overrides[i];
+    vres_case_opts o = {dp, s->noverrides, ov, NULL, NULL};
+    take_overrides(c, &o);
+    cd_parts p;
+    xmlDocPtr doc = s->case_xml ? parse_xml(c, s->case_xml, strlen(s->case_xml)) : NULL;
+    xmlNodePtr root = doc ? xmlDocGetRootElement(doc) : NULL;
+    int rc = -1;
+    if (root && !c->nerr) {
+        c->vars = vres_vars_new();
+        char err[128];
+        vres_vars_set_str(c->vars, "CaseName", s->name ? s->name : "case", 0, err, sizeof err);
+        if (find_parts(c, root, &p) == 0) {
+            read_predefinition(c, single(c, p.geometry, "predefinition"));
+            xmlNodePtr def = single(c, p.geometry, "definition");
+            if (def) read_definition(c, def);
+            if (c->have_def && !c->nerr) {
+                memcpy(ref, c->ref, sizeof c->ref);
+                rc = 0;
+            }
+        }
+    }
+    if (rc && !c->nerr) vres_error("%s: cannot read the lattice of the case at dp %g", src, dp);
+    if (doc) xmlFreeDoc(doc);
+    vres_vars_free(c->vars);
+    for (int i = 0; i < c->nov; i++) free(c->ov[i].name), free(c->ov[i].value);
+    free(c->ov);
+    free(ov);
+    free(src);
+    return rc;
 }

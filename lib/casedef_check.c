@@ -108,6 +108,8 @@ static int check_boxes(const vres_store *s)
     double h0 = s->ndomains ? s->dom[0].h : vres_params_get(&s->params, "h", 0);
     long *lines = vres_xmalloc(sizeof *lines * s->nboxes);
     box_lines(s, lines, s->nboxes);
+    for (size_t k = 0; k < s->nboxes; k++)
+        if (s->box[k].line > 0) lines[k] = s->box[k].line; /* recorded by the reader */
     int nprob = 0;
     const char *cname = s->name ? s->name : "case";
     for (size_t k = 0; k < s->nboxes; k++) {

@@ -224,18 +224,32 @@ static int each_token(const char *text, int (*fn)(const char *tok, void *arg), v
     return bad;
 }
 
-/* One <boxfill> word into the VRES_BOX_* mask. */
-static int boxfill_word(const char *w, void *arg)
+/* Bits of one <boxfill> face name, 0 when unknown. */
+static unsigned boxfill_bits(const char *w, size_t len)
 {
     static const char *const names[] = {"solid", "bottom", "top", "left", "right", "front", "back", "all"};
     static const unsigned bits[] = {VRES_BOX_SOLID, VRES_BOX_BOTTOM, VRES_BOX_TOP,  VRES_BOX_LEFT,
                                     VRES_BOX_RIGHT, VRES_BOX_FRONT,  VRES_BOX_BACK, VRES_BOX_ALL};
     for (int i = 0; i < 8; i++)
-        if (!strcasecmp(w, names[i])) {
-            *(unsigned *)arg |= bits[i];
-            return 0;
-        }
-    return -1;
+        if (strlen(names[i]) == len && !strncasecmp(w, names[i], len)) return bits[i];
+    return 0;
+}
+
+/* One <boxfill> word into the VRES_BOX_* mask; "a^b" is a without b (GenCase's "all^top", a box
+ * open at the top, as DualSPHysics' examples write tanks). */
+static int boxfill_word(const char *w, void *arg)
+{
+    unsigned m = 0;
+    for (int first = 1;; first = 0) {
+        size_t len = strcspn(w, "^");
+        unsigned b = boxfill_bits(w, len);
+        if (!b) return -1;
+        m = first ? b : m & ~b;
+        if (!w[len]) break;
+        w += len + 1;
+    }
+    *(unsigned *)arg |= m;
+    return 0;
 }
 
 /* One <modefill> word into the VRES_FILL_* mask ("border", GenCase's undocumented mode, is not
@@ -358,6 +372,30 @@ static int shape_box(cd_ctx *c, xmlNodePtr shape, double p[3], double size[3])
 
 #define CD_MAX_POINTS 4096 /* most points of one polygon or extrusion */
 
+/* A parsed shape: painted now unless <setactive drawpoints="0">, and kept as GenCase's shape
+ * output (for <shapeout> and <normals>) while drawshapes is on and setshapemode keeps its
+ * kind. Takes sh's points. */
+static void shape_emit(cd_ctx *c, xmlNodePtr node, cd_shape *sh)
+{
+    sh->paint = c->paint;
+    sh->line = xmlGetLineNo(node);
+    if (c->drawpoints) {
+        size_t n = cd_shape_draw(c, sh, &c->paint);
+        cd_debug(c, node, "<%s> painted %zu nodes", cd_name(node), n);
+    } else {
+        c->hidden++;
+        cd_debug(c, node, "<%s> paints no particles (setactive drawpoints=\"0\")", cd_name(node));
+    }
+    if (!c->drawshapes || !(c->shapekinds & (1u << (unsigned)c->paint.what))) {
+        free(sh->pts);
+        return;
+    }
+    c->shapes = vres_xrealloc(c->shapes, sizeof *c->shapes * ((size_t)c->nshapes + 1));
+    sh->pending = 1;
+    sh->sets = 0;
+    c->shapes[c->nshapes++] = *sh;
+}
+
 /* <drawbox>: <boxfill>, <point>, <size>|<endpoint>, <layers>. */
 static void draw_box(cd_ctx *c, xmlNodePtr node)
 {
@@ -368,8 +406,10 @@ static void draw_box(cd_ctx *c, xmlNodePtr node)
     long fill = text_mask(c, node, "boxfill", boxfill_word, VRES_BOX_SOLID);
     if (shape_box(c, node, p, size) < 0 || fill < 0) return;
     shape_layers(c, node);
-    size_t n = vres_canvas_box(c->canvas, &c->paint, p, size, (unsigned)fill);
-    cd_debug(c, node, "<drawbox> painted %zu nodes", n);
+    cd_shape sh = {.kind = CD_SH_BOX, .mask = (unsigned)fill};
+    memcpy(sh.p, p, sizeof p);
+    memcpy(sh.q, size, sizeof size);
+    shape_emit(c, node, &sh);
 }
 
 /* <drawcylinder radius mask>: two <point>s (the axis), <layers>. */
@@ -409,8 +449,10 @@ static void draw_cylinder(cd_ctx *c, xmlNodePtr node)
         return;
     }
     shape_layers(c, node);
-    size_t n = vres_canvas_cylinder(c->canvas, &c->paint, pts[0], pts[1], r, mask);
-    cd_debug(c, node, "<drawcylinder> painted %zu nodes", n);
+    cd_shape sh = {.kind = CD_SH_CYLINDER, .radius = r, .mask = mask};
+    memcpy(sh.p, pts[0], sizeof sh.p);
+    memcpy(sh.q, pts[1], sizeof sh.q);
+    shape_emit(c, node, &sh);
 }
 
 /* <drawpolygon>: at least three <point>s. */
@@ -422,12 +464,13 @@ static void draw_polygon(cd_ctx *c, xmlNodePtr node)
     double (*pts)[3] = vres_xmalloc(sizeof *pts * CD_MAX_POINTS);
     int np = shape_points(c, node, pts, CD_MAX_POINTS);
     if (np >= 0 && np < 3) cd_err(c, node, "<drawpolygon> needs at least three <point>s (has %d)", np);
-    if (np >= 3) {
-        shape_layers(c, node);
-        size_t n = vres_canvas_polygon(c->canvas, &c->paint, np, (const double(*)[3])pts);
-        cd_debug(c, node, "<drawpolygon> painted %zu nodes", n);
+    if (np < 3) {
+        free(pts);
+        return;
     }
-    free(pts);
+    shape_layers(c, node);
+    cd_shape sh = {.kind = CD_SH_POLYGON, .np = np, .pts = pts};
+    shape_emit(c, node, &sh);
 }
 
 /* <drawextrude closed>: <point>s, <extrude>, <layers>. An open polyline unless closed="true". */
@@ -447,12 +490,14 @@ static void draw_extrude(cd_ctx *c, xmlNodePtr node)
     double (*pts)[3] = vres_xmalloc(sizeof *pts * CD_MAX_POINTS);
     int np = shape_points(c, node, pts, CD_MAX_POINTS);
     if (np >= 0 && np < 2) cd_err(c, node, "<drawextrude> needs at least two <point>s (has %d)", np);
-    if (np >= 2) {
-        shape_layers(c, node);
-        size_t n = vres_canvas_extrude(c->canvas, &c->paint, np, (const double(*)[3])pts, ext, closed);
-        cd_debug(c, node, "<drawextrude> painted %zu nodes", n);
+    if (np < 2) {
+        free(pts);
+        return;
     }
-    free(pts);
+    shape_layers(c, node);
+    cd_shape sh = {.kind = CD_SH_EXTRUDE, .closed = closed, .np = np, .pts = pts};
+    memcpy(sh.q, ext, sizeof sh.q);
+    shape_emit(c, node, &sh);
 }
 
 /* <fillbox x y z>: seed, <modefill>, <point> with <size>|<endpoint>; <fillpoint x y z>: seed
@@ -470,6 +515,10 @@ static void fill(cd_ctx *c, xmlNodePtr node, int boxed)
     if (mode < 0) return;
     if (boxed && shape_box(c, node, p, size) < 0) return;
     for (int k = 0; k < 3; k++) bmax[k] = p[k] + size[k];
+    if (!c->drawpoints) {
+        cd_debug(c, node, "<%s> fills nothing (setactive drawpoints=\"0\")", cd_name(node));
+        return;
+    }
     if (c->paint.what == VRES_PAINT_VOID)
         cd_note(c, node, "<%s> after <setmkvoid> paints void nodes", cd_name(node));
     size_t n = vres_canvas_fill(c->canvas, &c->paint, seed, boxed ? p : NULL, boxed ? bmax : NULL,
@@ -549,9 +598,10 @@ void cd_run_commands(cd_ctx *c, xmlNodePtr list)
             static const char *const a[] = {"invert", NULL};
             cd_check_attrs(c, node, a);
             cd_bool(c, node, "invert", 1, &c->paint.normalinvert);
-        } else if (!strcmp(n, "setshapemode") || !strcmp(n, "shapeout") || !strcmp(n, "setfrdrawmode")) {
-            /* These only change GenCase's shape files (VTK) or its free-drawing of open shapes'
-             * output; vres writes no shape files. */
+        } else if (cd_shapeout_command(c, node)) {
+            continue;
+        } else if (!strcmp(n, "setfrdrawmode")) {
+            /* GenCase's free drawing mode only concerns its shape files (VTK), not particles. */
             cd_debug(c, node, "<%s> accepted: it only concerns GenCase's shape output, which vres does not write", n);
         } else if (!strcmp(n, "drawbox")) draw_box(c, node);
         else if (!strcmp(n, "drawcylinder")) draw_cylinder(c, node);

@@ -19,6 +19,27 @@
 #define CD_MAX_LISTS 64      /* most <list> definitions in <commands> */
 #define CD_MAX_MATRICES 64   /* depth of the matrixsave stack */
 #define CD_MAX_RUNDEPTH 32   /* most nested runlist calls (catches a list that runs itself) */
+#define CD_MAX_SETS 64       /* most <shapeout> geometry sets (bits of cd_shape.sets) */
+
+/* Shape kinds of cd_shape. */
+enum { CD_SH_BOX = 0, CD_SH_CYLINDER, CD_SH_POLYGON, CD_SH_EXTRUDE };
+
+/* One drawing command as GenCase keeps it for its shape output: the shape, its resolved
+ * arguments and the drawing state it was drawn in, so that <normals> can measure the walls'
+ * distance to it once every particle is drawn. */
+typedef struct cd_shape {
+    int kind;              /* CD_SH_* */
+    vres_paint paint;      /* drawing state at the command (matrix, layers, mk, ...) */
+    double p[3], q[3];     /* box: point and size; cylinder: the axis ends; extrusion: q the vector */
+    double radius;         /* cylinder radius (m) */
+    unsigned mask;         /* box: VRES_BOX_* fill; cylinder: VRES_CYL_HIDE_* */
+    int closed;            /* extrusion: closed section */
+    int np;                /* polygon/extrusion: number of points */
+    double (*pts)[3];      /* [np] polygon/extrusion points (m) */
+    int pending;           /* 1 until a <shapeout reset="true"> closes its set */
+    unsigned long long sets; /* bit k: in the geometry set of the k-th <shapeout> */
+    long line;             /* line of the command */
+} cd_shape;
 
 /* One --set NAME=VALUE override and whether something in the case used it. */
 typedef struct cd_override {
@@ -91,6 +112,18 @@ typedef struct cd_ctx {
     int nfloat;            /* number of floating mkbounds */
     int *move_mk;          /* mkbound of each <objreal> */
     int nmove;             /* number of moving mkbounds */
+    /* GenCase's shape output, the geometry of <normals> */
+    int drawpoints;        /* <setactive drawpoints>: 1 while shapes paint particles */
+    int drawshapes;        /* <setactive drawshapes>: 1 while shapes are kept as geometry */
+    unsigned shapekinds;   /* <setshapemode>: bit VRES_PAINT_* of the kinds kept (default all) */
+    cd_shape *shapes;      /* shapes kept, in drawing order */
+    int nshapes;           /* number of shapes kept */
+    char *setname[CD_MAX_SETS]; /* file of each <shapeout> ("hdp") */
+    int nsets;             /* number of <shapeout>s */
+    int hidden;            /* shapes drawn with drawpoints="0" (for a note when nothing uses them) */
+    /* redrawing a sub-domain (vres_case_opts.clip, .root) */
+    const vres_clip *clip; /* the region drawn, NULL for the whole domain */
+    const vres_store *root;/* the case drawn whole at its root dp, NULL for a case of its own */
 } cd_ctx;
 
 /* ---- messages ---- */
@@ -157,6 +190,9 @@ void cd_read_parameters(cd_ctx *c, xmlNodePtr parameters, vres_store *s, const d
                         const double bbmax[3]);
 /* Read <vres> (bufferbox tree) into s->box. */
 void cd_read_vres(cd_ctx *c, xmlNodePtr vres, vres_store *s);
+/* Cut the refinement boxes to the simulation domain (one note per box cut); a box wholly
+ * outside it is an error. */
+void cd_clip_boxes(cd_ctx *c, vres_store *s);
 /* Read execution/special (gauges, inout) into s->gauges_xml / s->inout_xml. */
 void cd_read_special(cd_ctx *c, xmlNodePtr special, vres_store *s);
 /* Note which mkbounds are floating or moving (before drawing, so walls get their type). */
@@ -165,6 +201,19 @@ void cd_scan_bodies(cd_ctx *c, xmlNodePtr floatings, xmlNodePtr motion);
  * centre and inertia from the particles where the case does not give them; floating
  * particles get their body's particle mass and initial velocity. */
 void cd_read_bodies(cd_ctx *c, xmlNodePtr floatings, xmlNodePtr motion, vres_store *s);
+/* Paint shape sh with paint (its own or a normals surface's) on the canvas. Returns the nodes. */
+size_t cd_shape_draw(cd_ctx *c, const cd_shape *sh, const vres_paint *paint);
+/* The drawing-state commands of GenCase's shape output: <setactive>, <resetdraw>,
+ * <setshapemode>, <shapeout>. Returns 1 when node was one of them. */
+int cd_shapeout_command(cd_ctx *c, xmlNodePtr node);
+/* <normals> (read once every particle is drawn): wall normals from the shapes of a <shapeout>
+ * set named by <norgeometry><geometryfile>, replacing those of the drawn shapes. */
+void cd_read_normals(cd_ctx *c, xmlNodePtr normals);
+/* Free the kept shapes and set names. */
+void cd_free_shapes(cd_ctx *c);
+/* The smoothing length at the case's dp (GenCase's H). */
+double cd_h(const cd_ctx *c);
+
 /* Report overrides that no variable, constant or parameter took. */
 void cd_check_overrides_used(cd_ctx *c);
 

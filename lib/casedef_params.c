@@ -551,6 +551,7 @@ static void read_box(cd_ctx *c, xmlNodePtr e, vres_store *s, int parent, double 
     memset(&b, 0, sizeof b);
     b.parent = parent;
     b.tracking_mk = -1;
+    b.line = xmlGetLineNo(e);
     int hs = cd_count(e, "size"), he = cd_count(e, "endpoint");
     if (!cd_child(e, "point") || hs + he != 1)
         cd_err(c, e, "<bufferbox> needs <point> and one of <size> or <endpoint>");
@@ -586,6 +587,37 @@ static void read_box(cd_ctx *c, xmlNodePtr e, vres_store *s, int parent, double 
     s->box[s->nboxes++] = b;
     for (xmlNodePtr n = e->children; n; n = n->next)
         if (cd_is_elem(n) && !strcmp(cd_name(n), "bufferbox")) read_box(c, n, s, self, section_buffsizeh);
+}
+
+void cd_clip_boxes(cd_ctx *c, vres_store *s)
+{
+    static const char axis[] = "xyz";
+    for (size_t k = 0; k < s->nboxes; k++) {
+        vres_box *b = &s->box[k];
+        double lo[3], hi[3];
+        int clipped = 0, empty = 0;
+        for (int a = 0; a < 3; a++) {
+            lo[a] = b->point[a], hi[a] = b->point[a] + b->size[a];
+            if (s->dim == 2 && a == 1) continue;
+            if (lo[a] < s->domain_min[a]) lo[a] = s->domain_min[a], clipped = 1;
+            if (hi[a] > s->domain_max[a]) hi[a] = s->domain_max[a], clipped = 1;
+            if (!(hi[a] > lo[a])) empty = a + 1;
+        }
+        if (empty) {
+            vres_error("%s:%ld: <bufferbox> %zu lies outside the simulation domain along %c (%g to %g)", c->src, b->line,
+                       k + 1, axis[empty - 1], s->domain_min[empty - 1], s->domain_max[empty - 1]);
+            c->nerr++;
+            continue;
+        }
+        if (!clipped) continue;
+        /* DualSPHysics accepts a box reaching past the domain (a box edge buried in a wall is the
+         * usual way to keep an interface off the fluid next to it): the part outside holds no
+         * particles, so the box is cut to the domain. */
+        if (!c->nerr)
+            vres_info("%s:%ld: note: <bufferbox> %zu reaches outside the simulation domain: clipped to (%g, %g, %g) to "
+                      "(%g, %g, %g)", c->src, b->line, k + 1, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+        for (int a = 0; a < 3; a++) b->point[a] = lo[a], b->size[a] = hi[a] - lo[a];
+    }
 }
 
 void cd_read_vres(cd_ctx *c, xmlNodePtr vres, vres_store *s)

@@ -6,6 +6,7 @@
  * ("FILE: what is wrong"). HDF5's own error printing is switched off around both; the reason
  * HDF5 gives is taken from its error stack and folded into that one message. */
 #include "store.h"
+#include "store_int.h"
 #include "cli.h"
 #include "fileio.h"
 #include "log.h"
@@ -224,6 +225,7 @@ void vres_store_free(vres_store *s)
     for (size_t b = 0; b < s->nbodies; b++) free(s->body[b].seg);
     free(s->body);
     free(s->box);
+    vres_store_free_tree(s);
     free(s->gauges_xml);
     free(s->inout_xml);
     free(s->code);
@@ -680,6 +682,7 @@ static void write_boxes(wctx *w, hid_t f, const vres_store *s)
         put_d(w, bg, "buffsizeh", b->buffsizeh);
         put_d(w, bg, "overlappingh", b->overlappingh);
         put_i(w, bg, "tracking_mk", b->tracking_mk);
+        put_i64(w, bg, "line", b->line);
         end_group(w, bg);
     }
     end_group(w, g);
@@ -703,6 +706,8 @@ static void write_model(wctx *w, hid_t f, const vres_store *s)
     write_domains(w, f, s);
     write_bodies(w, f, s);
     write_boxes(w, f, s);
+    char why[200];
+    if (!w->bad && vres_store_ext_write(f, s, why, sizeof why) != 0) wfail(w, -1, why, 0); /* store_iface.c */
     if (s->gauges_xml) write_xml_group(w, f, "Gauges", s->gauges_xml);
     if (s->inout_xml) write_xml_group(w, f, "InOut", s->inout_xml);
 }
@@ -1433,6 +1438,9 @@ static void read_boxes(rctx *r, hid_t f, vres_store *s)
         b->buffsizeh = get_d(r, bg, "buffsizeh");
         b->overlappingh = get_d(r, bg, "overlappingh");
         b->tracking_mk = get_i(r, bg, "tracking_mk");
+        long long line = 0; /* optional: stores written before it was recorded lack it */
+        if (!r->bad && bg >= 0 && H5Aexists(bg, "line") > 0) get_num(r, bg, "line", 1, 1, H5T_NATIVE_LLONG, &line);
+        b->line = (long)line;
         if (!r->bad && (b->parent < -1 || b->parent >= (int)i))
             rerr(r, "/VRes/B%zu: parent %d (-1 or an earlier box expected)", i, b->parent);
         if (bg >= 0) H5Gclose(bg);
@@ -1460,6 +1468,8 @@ static void read_model(rctx *r, hid_t f, vres_store *s)
     read_domains(r, f, s);
     read_bodies(r, f, s);
     read_boxes(r, f, s);
+    char why[400];
+    if (!r->bad && vres_store_ext_read(f, s, why, sizeof why) != 0) rerr(r, "%s", why); /* store_iface.c */
     s->gauges_xml = read_xml_group(r, f, "Gauges");
     s->inout_xml = read_xml_group(r, f, "InOut");
 }

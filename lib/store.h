@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "../kernels/ptype.h"
+#include "../kernels/region.h"
 
 #define VRES_STORE_FORMAT "vres-store" /* value of the root attribute "format" */
 #define VRES_STORE_VERSION 1           /* value of the root attribute "format_version" */
@@ -147,7 +148,21 @@ typedef struct vres_box {
     double buffsizeh;     /* buffer band width in units of the child's h */
     double overlappingh;  /* overlap in units of h */
     int tracking_mk;      /* mkbound followed by the box, -1 for none */
+    long line;            /* line of its <bufferbox> in the case XML, 0 when unknown */
 } vres_box;
+
+/* One interface of the domain tree: the mass segments on the outer edge of a buffer band,
+ * where the receiving domain's new buffer particles are born from the mass flux the donor's
+ * fluid brings (DESIGN.md section 5). */
+typedef struct vres_iface {
+    int recv;       /* receiving domain: the band is its buffer */
+    int donor;      /* donor domain: its fluid gives density and velocity at the segments */
+    size_t n;       /* number of segments */
+    double *pos;    /* [3n] centre of each segment (m) */
+    double *normal; /* [3n] unit normal, pointing away from the receiving domain's fluid */
+    double *area;   /* [n] length (2D, m) or area (3D, m^2) of the segment: dp_recv^(dim-1) */
+    double *mass;   /* [n] mass accumulated and not yet turned into a particle (kg) */
+} vres_iface;
 
 /* Everything one store file holds. */
 typedef struct vres_store {
@@ -173,6 +188,12 @@ typedef struct vres_store {
     char *inout_xml;      /* the case's <inout> element as XML text, NULL when none */
     char *code;           /* build that wrote the file read (its /Code group, one line); NULL for a
                              store made in memory: writing always records this build instead */
+    vres_region *region;  /* [ndomains] the domain tree's boxes (kernels/region.h), NULL for a store
+                             that was never partitioned */
+    size_t niface;        /* number of interfaces */
+    vres_iface *iface;    /* interfaces, two per refinement box (child's band, parent's band) */
+    uint64_t next_id;     /* first particle id not in use in any domain; 0 when unknown (a store
+                             vres-partition did not write: then 1 + the largest id) */
 } vres_store;
 
 /* A new empty store (dim 3, no domains). */
@@ -192,6 +213,17 @@ size_t vres_domain_count(const vres_domain *d, int type);
 void vres_domain_free(vres_domain *d);
 /* Prepend "YYYY-MM-DDTHH:MM:SSZ CMDLINE" to the history. */
 void vres_store_add_history(vres_store *s, const char *cmdline);
+
+/* Append an empty interface (recv, donor) and return it; valid until the next call. */
+vres_iface *vres_store_add_iface(vres_store *s, int recv, int donor);
+/* Make room for n segments in f (which keeps its first f->n). */
+void vres_iface_reserve(vres_iface *f, size_t n);
+/* Free an interface's arrays. */
+void vres_iface_free(vres_iface *f);
+/* Free the domain tree's regions and interfaces (the store then has none). */
+void vres_store_free_tree(vres_store *s);
+/* The first id not in use: next_id when known, else 1 + the largest id of any domain. */
+uint64_t vres_store_next_id(const vres_store *s);
 
 /* Write a store to path ("-" = stdout through an in-memory image), atomically: written to
  * a temporary name then renamed. Datasets are chunked and compressed; /Code records this

@@ -40,7 +40,7 @@ static vres_store *read_case(const vres_cli *cli)
     int nset = vres_cli_count(cli, "set");
     const char **sets = vres_xcalloc((unsigned long)nset + 1, sizeof *sets);
     for (int i = 0; i < nset; i++) sets[i] = vres_cli_nth(cli, "set", i);
-    vres_case_opts o = {vres_cli_double(cli, "dp", 0), nset, sets};
+    vres_case_opts o = {vres_cli_double(cli, "dp", 0), nset, sets, NULL, NULL};
     char *dir = dir_of(strcmp(path, "-") ? path : "./-");
     vres_store *s = vres_case_read((const char *)text, len, strcmp(path, "-") ? path : "(stdin)", dir, &o);
     free(dir);

@@ -95,20 +95,58 @@ static void print_header(FILE *o, const char *path, const vres_store *s)
     fprintf(o, "  written by  %s\n", s->code ? s->code : "?");
 }
 
-/* One domain: its geometry and (unless summary) its counts per type and mk. */
-static void print_domain(FILE *o, const vres_store *s, size_t k, const show *sh)
+/* Segments of the interfaces that domain k receives (its buffer's outer edge). */
+static size_t segments_of(const vres_store *s, size_t k)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < s->niface; i++)
+        if (s->iface[i].recv == (int)k) n += s->iface[i].n;
+    return n;
+}
+
+/* The domain tree, one line per domain: parent, dp, h, box, fluid, buffer and wall counts and
+ * the mass segments where its new buffer particles are born. */
+static void print_tree(FILE *o, const vres_store *s)
+{
+    char a[96], b[96];
+    size_t nseg = 0;
+    for (size_t i = 0; i < s->niface; i++) nseg += s->iface[i].n;
+    fprintf(o, "  tree        %zu domain%s, %zu interfaces, %zu segments, next id %llu\n", s->ndomains,
+            s->ndomains == 1 ? "" : "s", s->niface, nseg, (unsigned long long)vres_store_next_id(s));
+    for (size_t k = 0; k < s->ndomains; k++) {
+        const vres_domain *d = &s->dom[k];
+        size_t nf = vres_domain_count(d, VRES_FLUID), nb = vres_domain_count(d, VRES_BUFFER);
+        size_t nw = vres_domain_count(d, VRES_FIXED) + vres_domain_count(d, VRES_MOVING) +
+                    vres_domain_count(d, VRES_FLOATING);
+        char parent[32];
+        if (d->parent < 0) snprintf(parent, sizeof parent, "root");
+        else snprintf(parent, sizeof parent, "in D%d", d->parent);
+        fprintf(o, "  D%zu (%s): %zu particles, dp %g m, h %g m, box %s to %s m: %zu fluid, %zu buffer, %zu walls, "
+                   "%zu segments\n", k, parent, d->n, d->dp, d->h, vec3(a, sizeof a, d->box_min),
+                vec3(b, sizeof b, d->box_max), nf, nb, nw, segments_of(s, k));
+    }
+}
+
+/* One domain: its geometry, its interfaces and its counts per type and mk. */
+static void print_domain(FILE *o, const vres_store *s, size_t k)
 {
     const vres_domain *d = &s->dom[k];
     char a[96], b[96], parent[32];
     if (d->parent < 0) snprintf(parent, sizeof parent, "root");
     else snprintf(parent, sizeof parent, "in D%d", d->parent);
-    if (sh->level < 0) { /* summary: one line per domain */
-        fprintf(o, "  D%zu (%s): %zu particles, dp %g m\n", k, parent, d->n, d->dp);
-        return;
-    }
     fprintf(o, "\ndomain D%zu (%s): %zu particles, dp %g m\n", k, parent, d->n, d->dp);
     fprintf(o, "  h %g m, mass %g kg, dpratio %g\n", d->h, d->mass, d->dpratio);
     fprintf(o, "  box %s to %s m\n", vec3(a, sizeof a, d->box_min), vec3(b, sizeof b, d->box_max));
+    if (s->region && d->parent >= 0) {
+        const vres_region *r = &s->region[k];
+        fprintf(o, "  buffer band out to %s to %s m\n", vec3(a, sizeof a, r->buff_lo), vec3(b, sizeof b, r->buff_hi));
+        fprintf(o, "  D%d's buffer band from %s to %s m", d->parent, vec3(a, sizeof a, r->hole_lo), vec3(b, sizeof b, r->hole_hi));
+        fprintf(o, " in to %s to %s m\n", vec3(a, sizeof a, r->inner_lo), vec3(b, sizeof b, r->inner_hi));
+    }
+    for (size_t i = 0; i < s->niface; i++) {
+        const vres_iface *f = &s->iface[i];
+        if (f->recv == (int)k) fprintf(o, "  interface I%zu: %zu segments on its buffer's edge, fed by D%d\n", i, f->n, f->donor);
+    }
     fprintf(o, "  buffsizeh %g h, overlappingh %g h, ", d->buffsizeh, d->overlappingh);
     if (d->tracking_mk < 0) fprintf(o, "tracking none\n");
     else fprintf(o, "tracking mkbound %d\n", d->tracking_mk);
@@ -263,7 +301,8 @@ static int info_store(FILE *o, const char *path, const show *sh)
         }
     } else {
         print_header(o, name, s);
-        for (size_t k = 0; k < s->ndomains; k++) print_domain(o, s, k, sh);
+        print_tree(o, s);
+        for (size_t k = 0; sh->level >= 0 && k < s->ndomains; k++) print_domain(o, s, k);
         if (sh->level >= 0) {
             print_params(o, &s->params);
             print_bodies(o, s, sh);

@@ -51,7 +51,7 @@ static vres_store *rd_opts(const char *xml, double dp, ...)
     va_start(ap, dp);
     for (const char *a; n < 15 && (a = va_arg(ap, const char *));) sets[n++] = a;
     va_end(ap);
-    vres_case_opts o = {dp, n, sets};
+    vres_case_opts o = {dp, n, sets, NULL, NULL};
     return vres_case_read(xml, strlen(xml), "t.xml", ".", &o);
 }
 
@@ -386,7 +386,10 @@ START_TEST(vres_boxes)
                     "<dpratio v=\"2\"/></bufferbox>"
                     "<bufferbox><point x=\"1.2\" y=\"0\" z=\"0\"/><size x=\"0.5\" y=\"0\" z=\"0.5\"/><dpratio v=\"4\"/>"
                     "</bufferbox></vres>";
-    vres_store *s = rd(mkcase("", DEF2D, WATER, v, SYMPL));
+    /* the domain reaches x = 2, so the third box lies in it */
+    const char *wide = "<parameters>" P("StepAlgorithm", "2")
+                       "<simulationdomain><posmax x=\"2\" y=\"default\" z=\"default\"/></simulationdomain></parameters>";
+    vres_store *s = rd(mkcase("", DEF2D, WATER, v, wide));
     ck_assert_ptr_nonnull(s);
     ck_assert_uint_eq(s->nboxes, 3);
     ck_assert_int_eq(s->box[0].parent, -1);
@@ -525,6 +528,100 @@ START_TEST(skips_and_refusals)
 END_TEST
 
 /* Gauges and inlet/outlet zones are kept as XML text, their #expressions evaluated. */
+/* <boxfill>all^top</boxfill> draws what "bottom | left | right | front | back" draws; shapes after
+ * <setactive drawpoints="0"> paint nothing until <resetdraw>. */
+START_TEST(boxfill_except_and_setactive)
+{
+    const char *open_top = "<setmkbound mk=\"0\"/><drawbox><boxfill>all^top</boxfill>"
+                           "<point x=\"-0.1\" y=\"-1\" z=\"-0.1\"/><size x=\"1.2\" y=\"2\" z=\"1.1\"/></drawbox>";
+    vres_store *a = rd(mkcase("", DEF2D, WATER TANK, "", "")), *b;
+    ck_assert_ptr_nonnull(a);
+    char cmds[2048];
+    snprintf(cmds, sizeof cmds, "%s%s", WATER, open_top);
+    b = rd(mkcase("", DEF2D, cmds, "", ""));
+    ck_assert_ptr_nonnull(b);
+    ck_assert_uint_eq(vres_domain_count(&b->dom[0], VRES_FIXED), vres_domain_count(&a->dom[0], VRES_FIXED));
+    vres_store_free(b);
+    snprintf(cmds, sizeof cmds, "<setactive drawpoints=\"0\"/>%s<resetdraw/>%s", TANK, WATER);
+    b = rd(mkcase("", DEF2D, cmds, "", ""));
+    ck_assert_ptr_nonnull(b);
+    ck_assert_uint_eq(vres_domain_count(&b->dom[0], VRES_FIXED), 0);
+    ck_assert_uint_eq(vres_domain_count(&b->dom[0], VRES_FLUID), 66);
+    vres_store_free(b);
+    vres_store_free(a);
+}
+END_TEST
+
+/* A particle of d at x with type t: its index, or -1. */
+static long find_at(const vres_domain *d, const double *x, int t)
+{
+    for (size_t i = 0; i < d->n; i++) {
+        const double *p = &d->pos[3 * i];
+        if (d->type[i] == t && fabs(p[0] - x[0]) < 1e-9 && fabs(p[1] - x[1]) < 1e-9 && fabs(p[2] - x[2]) < 1e-9)
+            return (long)i;
+    }
+    return -1;
+}
+
+/* 1 when x lies in the window [lo, hi] (x and z) and outside the hole (strictly inside). */
+static int in_window(const double *x, const double *lo, const double *hi, const double *hlo, const double *hhi)
+{
+    if (x[0] < lo[0] - 1e-9 || x[0] > hi[0] + 1e-9 || x[2] < lo[2] - 1e-9 || x[2] > hi[2] + 1e-9) return 0;
+    return !(hlo && x[0] > hlo[0] && x[0] < hhi[0] && x[2] > hlo[2] && x[2] < hhi[2]);
+}
+
+/* Redrawing a case at another dp in a window minus a hole gives exactly the particles (type,
+ * mk, normal, density) a whole redrawing has there, although the fluid is a fill seeded
+ * outside the window and the window cuts the water column; the constants stay the root's. */
+START_TEST(redraw_clipped)
+{
+    const char *cmds = "<setmkbound mk=\"1\"/><setnormalinvert invert=\"true\"/><drawbox><boxfill>bottom | left | right</boxfill>"
+                       "<point x=\"-0.1\" y=\"-1\" z=\"-0.1\"/><size x=\"1.2\" y=\"2\" z=\"1.1\"/><layers vdp=\"0,1\"/></drawbox>"
+                       "<setmkfluid mk=\"2\"/><fillbox x=\"0.1\" y=\"0\" z=\"0.1\"><modefill>void</modefill>"
+                       "<point x=\"0\" y=\"-1\" z=\"0\"/><size x=\"1\" y=\"2\" z=\"0.5\"/></fillbox>";
+    vres_store *root = rd(mkcase("<hswl value=\"0\" auto=\"true\"/>", DEF2D, cmds, "", ""));
+    ck_assert_ptr_nonnull(root);
+    ck_assert_uint_gt(vres_domain_count(&root->dom[0], VRES_FLUID), 0);
+    vres_store *whole = vres_case_redraw(root, 0.05, NULL);
+    ck_assert_ptr_nonnull(whole);
+    double lo[3] = {0.5, 0, -0.3}, hi[3] = {1.5, 0, 0.3}, hlo[1][3] = {{0.7, 0, 0}}, hhi[1][3] = {{0.9, 0, 0.2}};
+    vres_clip clip = {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, 1, (const double (*)[3])hlo, (const double (*)[3])hhi};
+    vres_store *part = vres_case_redraw(root, 0.05, &clip);
+    ck_assert_ptr_nonnull(part);
+    const vres_domain *w = &whole->dom[0], *c = &part->dom[0];
+    size_t nin = 0;
+    for (size_t i = 0; i < w->n; i++) {
+        const double *x = &w->pos[3 * i];
+        if (!in_window(x, lo, hi, hlo[0], hhi[0])) continue;
+        nin++;
+        long j = find_at(c, x, w->type[i]);
+        ck_assert_msg(j >= 0, "particle %zu (%g, %g) of type %d missing from the clipped drawing", i, x[0], x[2], w->type[i]);
+        ck_assert_int_eq(c->mk[j], w->mk[i]);
+        for (int a = 0; a < 3; a++) NEAR(c->normal[3 * j + a], w->normal[3 * i + a], 1e-6);
+        NEAR(c->rho[j], w->rho[i], 1e-7);
+    }
+    ck_assert_uint_eq(c->n, nin);
+    ck_assert_uint_gt(vres_domain_count(c, VRES_FLUID), 20); /* the fill reached the window */
+    for (size_t i = 0; i < c->n; i++) ck_assert(in_window(&c->pos[3 * i], lo, hi, hlo[0], hhi[0]));
+    /* one equation of state: the root's hswl, cs0 and B; h and the masses follow dp */
+    const char *same[] = {"hswl", "cs0", "B", "rhop0", "gamma", "hdp"};
+    for (int k = 0; k < 6; k++) NEAR(par(part, same[k]), par(root, same[k]), 1e-12);
+    NEAR(par(part, "h"), par(root, "hdp") * 0.05, 1e-12);
+    NEAR(par(part, "massfluid"), 1000 * 0.05 * 0.05, 1e-12);
+    NEAR(c->dp, 0.05, 0);
+    vres_store_free(part);
+    /* a window in the air holds nothing, and that is no error */
+    double alo[3] = {0.2, 0, 1.5}, ahi[3] = {0.6, 0, 1.9};
+    vres_clip air = {{alo[0], alo[1], alo[2]}, {ahi[0], ahi[1], ahi[2]}, 0, NULL, NULL};
+    part = vres_case_redraw(root, 0.05, &air);
+    ck_assert_ptr_nonnull(part);
+    ck_assert_uint_eq(part->dom[0].n, 0);
+    vres_store_free(part);
+    vres_store_free(whole);
+    vres_store_free(root);
+}
+END_TEST
+
 START_TEST(special_kept)
 {
     vres_store *s = rd(mkcase("", DEF2D, WATER, "",
@@ -565,6 +662,8 @@ static Suite *suite(void)
     tcase_add_test(t, bodies);
     tcase_add_test(t, skips_and_refusals);
     tcase_add_test(t, special_kept);
+    tcase_add_test(t, boxfill_except_and_setactive);
+    tcase_add_test(t, redraw_clipped);
     suite_add_tcase(su, t);
     return su;
 }

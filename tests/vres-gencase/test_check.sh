@@ -23,3 +23,21 @@ expect 0 "the same case generates without --check" "$BIN/vres-gencase" -q "$T/na
 sed 's|<posmax x="default"|<posmax x="0.5"|' "$CASE" >"$T/cut.xml"
 expect_err 1 "fluid particles lie outside the simulation domain" "--check finds fluid outside the domain" \
     "$ASAN/vres-gencase" --check "$T/cut.xml"
+
+# cases/dambreak2d without its widened domain: the refinement box reaches 5 cm below the floor,
+# outside the simulation domain. DualSPHysics accepts that; vres cuts the box to the domain and
+# says so in one note naming the box and its line.
+sed 's|z="default - 0.05"|z="default"|' "$CASES/dambreak2d/dambreak2d_Def.xml" >"$T/below.xml"
+line=$(grep -n "<bufferbox>" "$T/below.xml" | cut -d: -f1)
+expect 0 "a box reaching below the floor passes --check" "$ASAN/vres-gencase" --check "$T/below.xml"
+check "one note names the box, its line and the clipped box" \
+    [ "$(grep -c "below.xml:$line: note: <bufferbox> 1 reaches outside the simulation domain: clipped to (1.25, 0, -0.0125) to (1.66, 0, 0.65)" "$ERR")" -eq 1 ]
+expect 0 "and generates" "$BIN/vres-gencase" -q "$T/below.xml" -o "$T/out/below.h5"
+# attr PATH FILE: an attribute's values on one line
+attr() { h5dump -m '%.17g' -a "$1" "$2" | awk '/\([0-9]+\):/ {sub(/.*\([0-9]+\): */, ""); gsub(/,/, ""); printf "%s%s", n++ ? " " : "", $0} END {print ""}'; }
+check "the store keeps the clipped box" [ "$(attr /VRes/B0/point "$T/out/below.h5")" = "1.25 0 -0.012499999999999999" ]
+check "and its line" [ "$(attr /VRes/B0/line "$T/out/below.h5")" = "$line" ]
+sed -e 's|<point x="1.25" y="0" z="-0.05" />|<point x="1.25" y="0" z="-0.5" />|' -e 's|<size x="0.41" y="0" z="0.70" />|<size x="0.41" y="0" z="0.3" />|' \
+    "$T/below.xml" >"$T/outside.xml"
+expect_err 1 "outside.xml:$line: <bufferbox> 1 lies outside the simulation domain along z" \
+    "a box wholly outside the domain is refused" "$ASAN/vres-gencase" --check "$T/outside.xml"

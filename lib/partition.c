@@ -1,0 +1,531 @@
+/* partition.c - the domain tree of a variable-resolution run (see partition.h).
+ *
+ * Outline of vres_partition: choose the boxes (options, --levels), lay out each domain's
+ * boxes on its lattice (plan), refuse what the coupling cannot run (check), redraw each
+ * sub-domain in its window at its dp (vres_case_redraw), sort every domain's particles with
+ * kernels/region.h, number them, and lay the interfaces' mass segments. */
+#include "partition.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "casedef.h"
+#include "log.h"
+#include "region.h"
+
+#define TIE 1e-6 /* in dp: a node this close to a box face counts as on it (as the canvas does) */
+
+/* One domain of the tree while it is planned. */
+typedef struct pdom {
+    int box;             /* its box in the store's list, -1 for the root */
+    int parent;          /* parent domain, -1 for the root */
+    long line;           /* case line of its box (0 unknown) */
+    double dp, h, mass;  /* spacing (m), smoothing length (m), fluid particle mass (kg) */
+    double dpratio;      /* parent dp / dp */
+    double buffsizeh;    /* buffer width in h */
+    double overlappingh; /* overlap in the child's h */
+    int tracking_mk;     /* tracked mkbound, -1 none */
+    double ref[3];       /* its lattice's reference point (m) */
+    double lo[3], hi[3]; /* its box as configured, cut to the simulation domain (m) */
+    unsigned open;       /* VRES_FACE bits of the box's faces on the simulation domain's edge */
+    vres_region reg;     /* its region boxes */
+} pdom;
+
+/* The partition being built. */
+typedef struct plan {
+    vres_store *s;       /* the store */
+    int dim;             /* 2 or 3 */
+    int n;               /* domains */
+    pdom *d;             /* [n] domains, parents first */
+    int nerr;            /* problems found */
+} plan;
+
+/* "bufferbox K (line L)" for messages about domain k (its box's 1-based index in the case). */
+static const char *bname(const plan *p, int k, char *buf, size_t len)
+{
+    const pdom *d = &p->d[k];
+    if (d->box < 0) snprintf(buf, len, "the root domain");
+    else if (d->line > 0) snprintf(buf, len, "bufferbox %d (line %ld)", d->box + 1, d->line);
+    else snprintf(buf, len, "bufferbox %d", d->box + 1);
+    return buf;
+}
+
+/* Report a problem of domain k's box. */
+static void perr(plan *p, int k, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void perr(plan *p, int k, const char *fmt, ...)
+{
+    char name[64], msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    vres_error("%s: %s: %s", p->s->name ? p->s->name : "store", bname(p, k, name, sizeof name), msg);
+    p->nerr++;
+}
+
+/* ------------------------------------------------------------------------------------------
+ * Mass segments
+ * ---------------------------------------------------------------------------------------- */
+
+size_t vres_segments_layout(int dim, const double lo[3], const double hi[3], double dp, int inward, unsigned skip,
+                            const double dmin[3], const double dmax[3], vres_iface *f)
+{
+    size_t added = 0;
+    double area = dim == 2 ? dp : dp * dp, tol = 1e-9 * dp;
+    for (int a = 0; a < 3; a++) {
+        if (dim == 2 && a == 1) continue;
+        int t[2], nt = 0; /* tangential axes */
+        for (int b = 0; b < 3; b++)
+            if (b != a && !(dim == 2 && b == 1)) t[nt++] = b;
+        long N[2] = {1, 1};
+        double off[2] = {0, 0};
+        for (int q = 0; q < nt; q++) {
+            double L = hi[t[q]] - lo[t[q]];
+            N[q] = lround(L / dp);
+            if (N[q] < 1) N[q] = 1;
+            off[q] = (L - dp * (double)(N[q] - 1)) / 2;
+        }
+        for (int side = 0; side < 2; side++) {
+            if (skip & VRES_FACE(a, side)) continue;
+            vres_iface_reserve(f, f->n + (size_t)(N[0] * N[1]));
+            for (long i = 0; i < N[0]; i++)
+                for (long j = 0; j < N[1]; j++) {
+                    double x[3] = {lo[0], lo[1], lo[2]};
+                    x[a] = side ? hi[a] : lo[a];
+                    x[t[0]] = lo[t[0]] + off[0] + dp * (double)i;
+                    if (nt > 1) x[t[1]] = lo[t[1]] + off[1] + dp * (double)j;
+                    int out = 0;
+                    for (int b = 0; b < 3; b++)
+                        if (!(dim == 2 && b == 1) && (x[b] < dmin[b] - tol || x[b] > dmax[b] + tol)) out = 1;
+                    if (out) continue;
+                    size_t k = f->n++;
+                    memcpy(&f->pos[3 * k], x, sizeof x);
+                    double sgn = (side ? 1.0 : -1.0) * (inward ? -1.0 : 1.0);
+                    for (int b = 0; b < 3; b++) f->normal[3 * k + b] = b == a ? sgn : 0;
+                    f->area[k] = area;
+                    f->mass[k] = 0;
+                    added++;
+                }
+        }
+    }
+    return added;
+}
+
+/* ------------------------------------------------------------------------------------------
+ * Planning the boxes on the lattices
+ * ---------------------------------------------------------------------------------------- */
+
+/* The cells of the nodes of lattice (ref, dp) inside [lo, hi] along one axis: [*flo, *fhi] on
+ * half-lattice positions. Returns 0 when no node lies inside. */
+static int fit_axis(double ref, double dp, double lo, double hi, double *flo, double *fhi)
+{
+    double i0 = ceil((lo - ref) / dp - TIE), i1 = floor((hi - ref) / dp + TIE);
+    if (i1 < i0) return 0;
+    *flo = ref + (i0 - 0.5) * dp;
+    *fhi = ref + (i1 + 0.5) * dp;
+    return 1;
+}
+
+/* Whole layers of dp holding a band of width w. */
+static double layers(double w, double dp)
+{
+    return ceil(w / dp - TIE) * dp;
+}
+
+/* Depth of box b in the store's list (1 for a box of the root). */
+static int box_depth(const vres_store *s, int b)
+{
+    int d = 0;
+    for (; b >= 0; b = s->box[b].parent) d++;
+    return d;
+}
+
+/* The domains: the root, then the kept boxes (parents before children) with the options. */
+static void choose(plan *p, const vres_part_opts *o)
+{
+    vres_store *s = p->s;
+    const vres_domain *r = &s->dom[0];
+    p->d = vres_xcalloc(s->nboxes + 1, sizeof *p->d);
+    pdom *z = &p->d[0];
+    z->box = z->parent = -1;
+    z->dp = r->dp, z->h = r->h, z->mass = r->mass, z->dpratio = 1;
+    z->buffsizeh = vres_params_get(&s->params, "buffsizeh", 2), z->tracking_mk = -1;
+    const vres_param *pr = vres_params_find(&s->params, "pointref");
+    for (int a = 0; a < 3; a++) z->ref[a] = pr && pr->n == 3 ? pr->v[a] : 0;
+    p->n = 1;
+    int *dom_of = vres_xmalloc(sizeof *dom_of * (s->nboxes ? s->nboxes : 1));
+    for (size_t b = 0; b < s->nboxes; b++) {
+        dom_of[b] = -1;
+        const vres_box *x = &s->box[b];
+        if (o->single || (o->levels > 0 && box_depth(s, (int)b) >= o->levels)) continue;
+        int par = x->parent < 0 ? 0 : dom_of[x->parent];
+        if (par < 0) continue; /* its parent was left out */
+        pdom *d = &p->d[p->n];
+        dom_of[b] = p->n++;
+        d->box = (int)b, d->parent = par, d->line = x->line, d->tracking_mk = x->tracking_mk;
+        d->dpratio = o->set_dpratio ? o->dpratio : x->dpratio;
+        d->buffsizeh = o->set_buffsizeh ? o->buffsizeh : x->buffsizeh;
+        d->overlappingh = o->set_overlappingh ? o->overlappingh : x->overlappingh;
+        for (int a = 0; a < 3; a++) {
+            d->lo[a] = fmax(x->point[a], s->domain_min[a]);
+            d->hi[a] = fmin(x->point[a] + x->size[a], s->domain_max[a]);
+        }
+    }
+    free(dom_of);
+}
+
+/* The fitted boxes of child k (see kernels/region.h). Returns 0, or -1 after reporting. */
+static int plan_child(plan *p, int k)
+{
+    const vres_store *s = p->s;
+    pdom *d = &p->d[k], *q = &p->d[d->parent];
+    const double hdp = p->d[0].h / p->d[0].dp;
+    d->dp = q->dp / d->dpratio;
+    d->h = hdp * d->dp;
+    d->mass = vres_params_get(&s->params, "rhop0", 1000) * pow(d->dp, p->dim);
+    if (vres_case_lattice(s, d->dp, d->ref) != 0) return p->nerr++, -1;
+    vres_region *r = &d->reg;
+    r->parent = d->parent;
+    double band = layers(d->buffsizeh * d->h, d->dp), pband = layers(d->buffsizeh * q->h, q->dp);
+    double ov = d->overlappingh * d->h;
+    for (int a = 0; a < 3; a++) {
+        if (p->dim == 2 && a == 1) { /* the node plane */
+            r->fluid_lo[a] = r->fluid_hi[a] = r->buff_lo[a] = r->buff_hi[a] = s->domain_min[a];
+            r->hole_lo[a] = r->hole_hi[a] = r->inner_lo[a] = r->inner_hi[a] = s->domain_min[a];
+            continue;
+        }
+        if (d->lo[a] <= s->domain_min[a] + TIE * d->dp) d->open |= VRES_FACE(a, 0);
+        if (d->hi[a] >= s->domain_max[a] - TIE * d->dp) d->open |= VRES_FACE(a, 1);
+        if (!fit_axis(d->ref[a], d->dp, d->lo[a], d->hi[a], &r->fluid_lo[a], &r->fluid_hi[a])) {
+            perr(p, k, "the box holds no particle of its dp %g m along %c (it is %g m thick)", d->dp, "xyz"[a],
+                 d->hi[a] - d->lo[a]);
+            return -1;
+        }
+        r->buff_lo[a] = r->fluid_lo[a] - band, r->buff_hi[a] = r->fluid_hi[a] + band;
+        if (!fit_axis(q->ref[a], q->dp, r->fluid_lo[a] + ov, r->fluid_hi[a] - ov, &r->hole_lo[a], &r->hole_hi[a])) {
+            perr(p, k, "the box (less its overlap %g m) holds no particle of its parent's dp %g m along %c", ov, q->dp,
+                 "xyz"[a]);
+            return -1;
+        }
+        r->inner_lo[a] = d->open & VRES_FACE(a, 0) ? r->hole_lo[a] : r->hole_lo[a] + pband;
+        r->inner_hi[a] = d->open & VRES_FACE(a, 1) ? r->hole_hi[a] : r->hole_hi[a] - pband;
+        if (!(r->inner_hi[a] > r->inner_lo[a] + TIE * q->dp)) {
+            perr(p, k, "the box is too small along %c: its parent's buffer bands (%g m each) fill it; make it wider "
+                       "than %g m", "xyz"[a], pband, 2 * pband + q->dp);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* The root's region: the simulation domain, no buffer. */
+static void plan_root(plan *p)
+{
+    vres_region *r = &p->d[0].reg;
+    memset(r, 0, sizeof *r);
+    r->parent = -1;
+    for (int a = 0; a < 3; a++) {
+        r->fluid_lo[a] = r->buff_lo[a] = p->s->domain_min[a];
+        r->fluid_hi[a] = r->buff_hi[a] = p->s->domain_max[a];
+    }
+}
+
+/* ------------------------------------------------------------------------------------------
+ * Refusals
+ * ---------------------------------------------------------------------------------------- */
+
+/* What the coupling needs of the options and parameters: Symplectic, Wendland, dpratio > 0,
+ * buffers at least the kernel support wide, no negative overlap. */
+static void check_params(plan *p)
+{
+    const vres_params *P = &p->s->params;
+    if (p->n < 2) return;
+    double step = vres_params_get(P, "StepAlgorithm", 1), kern = vres_params_get(P, "Kernel", 2);
+    if (step != 2)
+        perr(p, 1, "variable resolution needs StepAlgorithm=2 (Symplectic); the store has %g%s", step,
+             step == 1 ? " (Verlet)" : "");
+    if (kern != 2)
+        perr(p, 1, "variable resolution supports only Kernel=2 (Wendland); the store has %g%s", kern,
+             kern == 1 ? " (cubic spline)" : "");
+    double hdp = p->d[0].h / p->d[0].dp;
+    for (int k = 1; k < p->n; k++) {
+        pdom *d = &p->d[k];
+        if (!(d->dpratio > 0)) perr(p, k, "dpratio=%g: it must be greater than zero", d->dpratio);
+        d->dp = p->d[d->parent].dp / (d->dpratio > 0 ? d->dpratio : 1);
+        if (!(d->buffsizeh >= 2))
+            perr(p, k, "buffsizeh=%g makes its buffer %g m wide, narrower than the kernel support 2h = %g m",
+                 d->buffsizeh, d->buffsizeh * hdp * d->dp, 2 * hdp * d->dp);
+        if (!(d->overlappingh >= 0)) perr(p, k, "overlappingh=%g: it must not be negative", d->overlappingh);
+    }
+}
+
+/* 1 when the boxes [alo, ahi] and [blo, bhi] share volume (touching is no overlap). */
+static int overlaps(int dim, const double *alo, const double *ahi, const double *blo, const double *bhi)
+{
+    for (int a = 0; a < 3; a++) {
+        if (dim == 2 && a == 1) continue;
+        if (!(alo[a] < bhi[a] && blo[a] < ahi[a])) return 0;
+    }
+    return 1;
+}
+
+/* A child's box and buffer band inside its parent's box (but where the parent reaches the
+ * domain's edge); siblings apart. */
+static void check_nesting(plan *p, int k)
+{
+    const pdom *d = &p->d[k], *q = &p->d[d->parent];
+    char name[64];
+    for (int a = 0; d->parent > 0 && a < 3; a++) {
+        if (p->dim == 2 && a == 1) continue;
+        double tol = TIE * d->dp;
+        int bad_lo = !(q->open & VRES_FACE(a, 0)) && d->reg.buff_lo[a] < q->reg.fluid_lo[a] - tol;
+        int bad_hi = !(q->open & VRES_FACE(a, 1)) && d->reg.buff_hi[a] > q->reg.fluid_hi[a] + tol;
+        if (bad_lo || bad_hi) {
+            perr(p, k, "it is not inside its parent %s: the box and its buffer band (%g to %g m along %c) must lie in "
+                       "the parent's box (%g to %g m)", bname(p, d->parent, name, sizeof name), d->reg.buff_lo[a],
+                 d->reg.buff_hi[a], "xyz"[a], q->reg.fluid_lo[a], q->reg.fluid_hi[a]);
+            return;
+        }
+    }
+    for (int j = k + 1; j < p->n; j++) {
+        const pdom *e = &p->d[j];
+        if (e->parent != d->parent) continue;
+        if (overlaps(p->dim, d->reg.buff_lo, d->reg.buff_hi, e->reg.fluid_lo, e->reg.fluid_hi) ||
+            overlaps(p->dim, d->reg.fluid_lo, d->reg.fluid_hi, e->reg.buff_lo, e->reg.buff_hi))
+            perr(p, k, "it overlaps its sibling %s: sibling boxes with their buffer bands must not reach into each "
+                       "other", bname(p, j, name, sizeof name));
+    }
+}
+
+/* A floating body lies wholly inside each box or wholly outside its buffer band. */
+static void check_bodies(plan *p, int k)
+{
+    const vres_store *s = p->s;
+    const vres_domain *r = &s->dom[0];
+    const vres_region *g = &p->d[k].reg;
+    for (size_t b = 0; b < s->nbodies; b++) {
+        if (s->body[b].kind != VRES_FLOATING) continue;
+        size_t nin = 0, nout = 0, nmid = 0;
+        for (size_t i = 0; i < r->n; i++) {
+            if (r->type[i] != VRES_FLOATING || r->mk[i] != s->body[b].mkbound) continue;
+            const double *x = &r->pos[3 * i];
+            if (vres_region_in_box(g->fluid_lo, g->fluid_hi, 0, x, p->dim)) nin++;
+            else if (!vres_region_in_box(g->buff_lo, g->buff_hi, 0, x, p->dim)) nout++;
+            else nmid++;
+        }
+        if (nmid || (nin && nout))
+            perr(p, k, "it cuts floating body mkbound %d (%zu of its particles inside the box, %zu in its buffer band, "
+                       "%zu outside): a floating body must lie wholly inside a box or wholly outside its buffer band",
+                 s->body[b].mkbound, nin, nmid, nout);
+    }
+}
+
+/* ------------------------------------------------------------------------------------------
+ * Drawing and sorting the particles
+ * ---------------------------------------------------------------------------------------- */
+
+/* Redraw child k at its dp in its buffer box grown by the kernel support (and a dp), less its
+ * children's inner boxes shrunk by as much. NULL after the reader said why. */
+static vres_store *draw_child(plan *p, int k)
+{
+    const pdom *d = &p->d[k];
+    double g = 2 * d->h + d->dp;
+    vres_clip clip;
+    memset(&clip, 0, sizeof clip);
+    double (*hlo)[3] = vres_xcalloc((size_t)p->n, sizeof *hlo), (*hhi)[3] = vres_xcalloc((size_t)p->n, sizeof *hhi);
+    for (int a = 0; a < 3; a++) clip.lo[a] = d->reg.buff_lo[a] - g, clip.hi[a] = d->reg.buff_hi[a] + g;
+    for (int j = k + 1; j < p->n; j++) {
+        if (p->d[j].parent != k) continue;
+        int ok = 1;
+        for (int a = 0; a < 3; a++) {
+            hlo[clip.nholes][a] = p->d[j].reg.inner_lo[a] + (p->dim == 2 && a == 1 ? -1 : g);
+            hhi[clip.nholes][a] = p->d[j].reg.inner_hi[a] - (p->dim == 2 && a == 1 ? -1 : g);
+            if (!(hhi[clip.nholes][a] > hlo[clip.nholes][a])) ok = 0;
+        }
+        clip.nholes += ok;
+    }
+    clip.hole_lo = (const double (*)[3])hlo;
+    clip.hole_hi = (const double (*)[3])hhi;
+    vres_store *t = vres_case_redraw(p->s, d->dp, &clip);
+    free(hlo);
+    free(hhi);
+    return t;
+}
+
+/* Copy particle i of src to dst with type t. */
+static void copy_particle(vres_domain *dst, const vres_domain *src, size_t i, int t)
+{
+    size_t j = vres_domain_push(dst, &src->pos[3 * i], t, src->mk[i]);
+    memcpy(&dst->vel[3 * j], &src->vel[3 * i], 3 * sizeof *dst->vel);
+    memcpy(&dst->normal[3 * j], &src->normal[3 * i], 3 * sizeof *dst->normal);
+    dst->rho[j] = src->rho[i];
+    dst->press[j] = src->press[i];
+    dst->mass_p[j] = src->mass_p[i];
+    dst->id[j] = src->id[i];
+}
+
+/* Domain k's particles from src: fluid in its fluid region stays fluid, fluid in a buffer band
+ * becomes buffer, fluid elsewhere is dropped; walls within the kernel support of its fluid and
+ * buffer stay. Returns the number of fluid particles dropped. */
+static size_t sort_domain(const plan *p, int k, const vres_domain *src, vres_domain *dst)
+{
+    vres_region *reg = vres_xmalloc(sizeof *reg * (size_t)p->n); /* the regions side by side, as the run has them */
+    for (int j = 0; j < p->n; j++) reg[j] = p->d[j].reg;
+    double support = 2 * p->d[k].h;
+    size_t dropped = 0;
+    vres_domain_reserve(dst, src->n);
+    for (size_t i = 0; i < src->n; i++) {
+        int t = src->type[i], donor;
+        const double *x = &src->pos[3 * i];
+        if (vres_ptype_is_wall(t)) {
+            if (vres_region_keeps_wall(reg, p->n, k, x, p->dim, support)) copy_particle(dst, src, i, t);
+            continue;
+        }
+        int cls = vres_region_classify(reg, p->n, k, x, p->dim, &donor);
+        if (cls == VRES_REGION_OUT || (t == VRES_INLET && cls != VRES_REGION_FLUID)) {
+            dropped++;
+            continue;
+        }
+        copy_particle(dst, src, i, t == VRES_INLET ? t : cls == VRES_REGION_BUFFER ? VRES_BUFFER : VRES_FLUID);
+    }
+    free(reg);
+    return dropped;
+}
+
+/* Floating particles of a redrawn domain: the root's particle mass of their body scaled by
+ * (dp / dp_root)^dim, and the body's initial velocity (the reader leaves bodies to the root). */
+static void fix_floating(const plan *p, int k, vres_domain *d)
+{
+    const vres_store *s = p->s;
+    const vres_domain *r = &s->dom[0];
+    double scale = pow(p->d[k].dp / p->d[0].dp, p->dim);
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->type[i] != VRES_FLOATING) continue;
+        for (size_t j = 0; j < r->n; j++)
+            if (r->type[j] == VRES_FLOATING && r->mk[j] == d->mk[i]) {
+                d->mass_p[i] = r->mass_p[j] * scale;
+                break;
+            }
+        for (size_t b = 0; b < s->nbodies; b++) {
+            const vres_body *y = &s->body[b];
+            if (y->mkbound != d->mk[i]) continue;
+            const double *x = &d->pos[3 * i], *w = y->omega;
+            double rx = x[0] - y->center[0], ry = x[1] - y->center[1], rz = x[2] - y->center[2];
+            d->vel[3 * i] = (float)(y->vel[0] + w[1] * rz - w[2] * ry);
+            d->vel[3 * i + 1] = (float)(y->vel[1] + w[2] * rx - w[0] * rz);
+            d->vel[3 * i + 2] = (float)(y->vel[2] + w[0] * ry - w[1] * rx);
+        }
+    }
+}
+
+/* ------------------------------------------------------------------------------------------
+ * Assembling the partitioned store
+ * ---------------------------------------------------------------------------------------- */
+
+/* Domain k's attributes in d. */
+static void set_attrs(const plan *p, int k, vres_domain *d)
+{
+    const pdom *x = &p->d[k];
+    d->parent = x->parent;
+    d->dp = x->dp, d->h = x->h, d->mass = x->mass, d->dpratio = x->dpratio;
+    memcpy(d->box_min, x->reg.fluid_lo, sizeof d->box_min);
+    memcpy(d->box_max, x->reg.fluid_hi, sizeof d->box_max);
+    d->buffsizeh = x->buffsizeh, d->overlappingh = x->overlappingh, d->tracking_mk = x->tracking_mk;
+}
+
+/* Every domain's particles, sorted: the root's from the store, the others redrawn. Returns
+ * the new domain array, or NULL after a message. */
+static vres_domain *build_domains(plan *p)
+{
+    vres_domain *nd = vres_xcalloc((size_t)p->n, sizeof *nd);
+    uint64_t next = vres_store_next_id(p->s);
+    for (int k = 0; k < p->n; k++) {
+        vres_store *t = k ? draw_child(p, k) : NULL;
+        if (k && !t) {
+            for (int j = 0; j < k; j++) vres_domain_free(&nd[j]);
+            free(nd);
+            return NULL;
+        }
+        const vres_domain *src = k ? &t->dom[0] : &p->s->dom[0];
+        size_t dropped = sort_domain(p, k, src, &nd[k]);
+        if (k) {
+            fix_floating(p, k, &nd[k]);
+            for (size_t i = 0; i < nd[k].n; i++) nd[k].id[i] = next++;
+        }
+        set_attrs(p, k, &nd[k]);
+        vres_debug("D%d: %zu particles at dp %g (%zu fluid of the drawing outside its regions dropped)", k, nd[k].n,
+                   p->d[k].dp, dropped);
+        vres_store_free(t);
+    }
+    p->s->next_id = next;
+    return nd;
+}
+
+/* The two interfaces of each box: the child's band fed by the parent (segments on the child's
+ * buffer box, dp_child apart, normals out of it) and the parent's band fed by the child
+ * (segments on the inner box, dp_parent apart, normals into it; none on faces at the domain's
+ * edge); segments outside the simulation domain are dropped. */
+static void build_ifaces(plan *p)
+{
+    vres_store *s = p->s;
+    for (int k = 1; k < p->n; k++) {
+        const pdom *d = &p->d[k], *q = &p->d[d->parent];
+        vres_iface *f = vres_store_add_iface(s, k, d->parent);
+        vres_segments_layout(p->dim, d->reg.buff_lo, d->reg.buff_hi, d->dp, 0, 0, s->domain_min, s->domain_max, f);
+        f = vres_store_add_iface(s, d->parent, k);
+        vres_segments_layout(p->dim, d->reg.inner_lo, d->reg.inner_hi, q->dp, 1, d->open, s->domain_min, s->domain_max, f);
+    }
+}
+
+/* The store's box list becomes the kept boxes with the options applied. */
+static void keep_boxes(plan *p)
+{
+    vres_store *s = p->s;
+    vres_box *nb = vres_xcalloc((size_t)p->n, sizeof *nb);
+    for (int k = 1; k < p->n; k++) {
+        const pdom *d = &p->d[k];
+        vres_box *b = &nb[k - 1];
+        *b = s->box[d->box];
+        b->parent = d->parent - 1;
+        b->dpratio = d->dpratio, b->buffsizeh = d->buffsizeh, b->overlappingh = d->overlappingh;
+        for (int a = 0; a < 3; a++) b->point[a] = d->lo[a], b->size[a] = d->hi[a] - d->lo[a];
+    }
+    free(s->box);
+    s->box = nb;
+    s->nboxes = (size_t)p->n - 1;
+}
+
+int vres_partition(vres_store *s, const vres_part_opts *o)
+{
+    if (s->ndomains != 1) {
+        vres_error("%s: the store holds %zu domains: partition the store vres-gencase writes (one root domain)",
+                   s->name ? s->name : "store", s->ndomains);
+        return -1;
+    }
+    plan P = {s, s->dim, 0, NULL, 0}, *p = &P;
+    choose(p, o);
+    check_params(p);
+    plan_root(p);
+    for (int k = 1; k < p->n && !p->nerr; k++) plan_child(p, k);
+    for (int k = 1; k < p->n && !p->nerr; k++) check_nesting(p, k);
+    for (int k = 1; k < p->n && !p->nerr; k++) check_bodies(p, k);
+    vres_domain *nd = p->nerr ? NULL : build_domains(p);
+    if (!nd) {
+        free(p->d);
+        return -1;
+    }
+    vres_domain_free(&s->dom[0]);
+    free(s->dom);
+    s->dom = nd;
+    s->ndomains = (size_t)p->n;
+    vres_store_free_tree(s);
+    s->region = vres_xcalloc((size_t)p->n, sizeof *s->region);
+    for (int k = 0; k < p->n; k++) s->region[k] = p->d[k].reg;
+    build_ifaces(p);
+    keep_boxes(p);
+    free(p->d);
+    return 0;
+}
