@@ -1,0 +1,224 @@
+/* couple.h - the per-particle and per-segment physics of the variable-resolution coupling
+ * (DESIGN 5), written once for the CPU and CUDA (device.h): the buffer particles' density and
+ * velocity from their donor domain, and the mass that the interface segments accumulate.
+ *
+ * A receiving domain k is coupled to donor domains j (its parent through its own buffer band,
+ * each child through the band of the hole it leaves for it). Everything a donor shows the
+ * coupling is a vres_donor: its particle arrays and cell list where the backend holds them, and
+ * its interpolation settings (its own kernel, h and masses). Donors are the donor's ordinary
+ * fluid only (interp_liu.h): never its buffer, walls or inlets.
+ *
+ * Segments. The outer edge of each buffer band is cut into segments of length dp_k (2D) or
+ * patches dp_k^2 (3D), each with a unit normal n pointing away from the receiving domain's
+ * fluid. Each step a segment accumulates the mass that enters the band through it,
+ *
+ *     dm = max(0, -rho* (v* - v_box) . n A dt)
+ *
+ * with rho*, v* interpolated at the segment from the donor, only where the donor's support is
+ * full there (interp_liu.h's gate: no creation at a free surface) and no receiving-domain wall
+ * lies within dp_k of it, other than straight behind it along +n (the wall gate, after
+ * DualSPHysics 5.4's CheckMassFlux: a wall beside or in front of a segment would make new
+ * particles inside it; the segment's mass is then reset to zero). Outflow through a segment is
+ * not subtracted: particles that leave the band through its outer edge are deleted, which is
+ * how mass leaves. A segment holding at least the domain's particle mass creates one buffer
+ * particle dp_k/2 inside it (vres_couple_birth) and loses that mass. */
+#ifndef VRES_KERNELS_COUPLE_H
+#define VRES_KERNELS_COUPLE_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "device.h"
+#include "interp_liu.h"
+#include "ptype.h"
+#include "region.h"
+
+#define VRES_COUPLE_WALL_COS 0.70710678118654752 /* cos 45 deg: the wall gate's cone behind a segment */
+
+/* What the classification did to a particle (vres_couple_classify_one's event). */
+#define VRES_EV_NONE 0        /* nothing: it stays as it was */
+#define VRES_EV_TO_FLUID 1    /* a buffer particle entered the fluid region: now fluid */
+#define VRES_EV_TO_BUFFER 2   /* a fluid particle entered a buffer band: now buffer */
+#define VRES_EV_DEL_BUFFER 3  /* a buffer particle left its band's outer edge: deleted */
+#define VRES_EV_DEL_FLUID 4   /* a fluid particle went past a buffer band in one step: deleted */
+#define VRES_EV_NOSUPPORT 5   /* a buffer particle whose donor has too little support there: deleted */
+#define VRES_EV_COUNT 6       /* number of event codes */
+
+/* What one donor domain shows the coupling (pointers in the backend's memory space). */
+typedef struct vres_donor {
+    vres_cells cells;    /* its cell list, current for the positions below (device copy on CUDA) */
+    const double *pos;   /* [3n] positions (m), cell order */
+    const float *vel;    /* [3n] velocities (m/s) */
+    const float *rho;    /* [n] densities (kg/m^3) */
+    const double *mass;  /* [n] particle masses (kg) */
+    const uint8_t *type; /* [n] particle types (ptype.h) */
+    vres_liu_opts o;     /* its kernel (h), rho0 and the interpolation thresholds */
+    double dp;           /* its particle spacing (m) */
+} vres_donor;
+
+/* The receiving domain's walls, for the wall gate. */
+typedef struct vres_couple_walls {
+    vres_cells cells;    /* the receiving domain's cell list (current) */
+    const double *pos;   /* [3n] its positions (m) */
+    const uint8_t *type; /* [n] its types: only walls are looked at */
+} vres_couple_walls;
+
+/* The segments of one receiving domain (arrays of nseg, in the backend's memory space). */
+typedef struct vres_segments {
+    const double *pos;     /* [3 nseg] segment centres (m) */
+    const double *normal;  /* [3 nseg] unit normals, away from the receiving domain's fluid */
+    const double *area;    /* [nseg] length (2D, m) or area (3D, m^2) */
+    const int32_t *donor;  /* [nseg] index of the donor domain in the donors array */
+    const double *vbox;    /* [3 nseg] velocity of the segment (m/s): a tracking box's, else 0 */
+    double *mass;          /* [nseg] accumulated mass (kg), updated */
+    float *rho;            /* [nseg] the donor's interpolated density there (kg/m^3), NaN without support */
+    float *vel;            /* [3 nseg] the donor's interpolated velocity there (m/s) */
+    uint8_t *state;        /* [nseg] VRES_SEG_* of the last update */
+} vres_segments;
+
+/* What happened to a segment in the last update (vres_segments.state). */
+#define VRES_SEG_FLUX 0     /* accumulated dm (possibly zero: outflow) */
+#define VRES_SEG_NOGATE 1   /* the donor's support is not full (free surface, or no donor): nothing added */
+#define VRES_SEG_WALL 2     /* a wall beside or in front of it: mass reset to zero */
+
+/* The mass entering through a segment of normal n (unit) and area (m or m^2) over dt (s)
+ * when the donor has density rho (kg/m^3) and velocity v (m/s) there and the segment moves at
+ * vbox (m/s): max(0, -rho (v - vbox) . n area dt) (kg). */
+VRES_HD static inline double vres_couple_dm(double rho, const double v[3], const double vbox[3], const double n[3],
+                                            double area, double dt)
+{
+    const double un = (v[0] - vbox[0]) * n[0] + (v[1] - vbox[1]) * n[1] + (v[2] - vbox[2]) * n[2];
+    const double dm = -rho * un * area * dt;
+    return dm > 0 ? dm : 0;
+}
+
+/* 1 when a wall particle at w (m) blocks the segment at p (m) of unit normal n: it lies within
+ * dp (m) of p and not inside the 45-degree cone along +n behind the segment (the direction
+ * from p to the wall makes more than 45 degrees with +n). 2D ignores y. */
+VRES_HD static inline int vres_couple_wall_blocks(const double p[3], const double n[3], const double w[3], double dp,
+                                                  int dim)
+{
+    double d[3] = {w[0] - p[0], dim == 2 ? 0.0 : w[1] - p[1], w[2] - p[2]};
+    const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (r2 >= dp * dp) return 0;
+    if (r2 == 0) return 1;
+    const double c = (d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) / sqrt(r2);
+    return c < VRES_COUPLE_WALL_COS;
+}
+
+/* 1 when a wall of the receiving domain blocks the segment at p with normal n (dp the receiving
+ * domain's spacing, m). */
+VRES_HD static inline int vres_couple_wall_gate(const vres_couple_walls *w, const double p[3], const double n[3],
+                                                double dp)
+{
+    vres_cell_range nb[27];
+    const int m = vres_cells_neighbours(&w->cells, p, nb), dim = w->cells.dim;
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            if (!vres_type_is_wall(w->type[b])) continue;
+            const double x[3] = {w->pos[3 * b] + nb[c].shift[0], w->pos[3 * b + 1] + nb[c].shift[1],
+                                 w->pos[3 * b + 2] + nb[c].shift[2]};
+            if (vres_couple_wall_blocks(p, n, x, dp, dim)) return 1;
+        }
+    return 0;
+}
+
+/* Update segment s over dt (s): interpolate the donor there, gate, accumulate (dp the receiving
+ * domain's spacing, m). */
+VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *donors, vres_segments S,
+                                                   vres_couple_walls w, double dp, double dt)
+{
+    const vres_donor *D = &donors[S.donor[s]];
+    const double *p = &S.pos[3 * s], *n = &S.normal[3 * s];
+    vres_liu_result r = vres_liu_at(&D->cells, D->o, D->pos, D->vel, D->rho, D->mass, D->type, p);
+    S.rho[s] = (float)r.rho;
+    for (int a = 0; a < 3; a++) S.vel[3 * s + a] = (float)r.v[a];
+    const double dpmin = dp < D->dp ? dp : D->dp;
+    if (vres_couple_wall_gate(&w, p, n, dp)) {
+        S.mass[s] = 0;
+        S.state[s] = VRES_SEG_WALL;
+    } else if (!vres_liu_flux_gate(&r, D->cells.dim, dpmin)) {
+        S.state[s] = VRES_SEG_NOGATE;
+    } else {
+        S.mass[s] += vres_couple_dm(r.rho, r.v, &S.vbox[3 * s], n, S.area[s], dt);
+        S.state[s] = VRES_SEG_FLUX;
+    }
+}
+
+/* vres_couple_segment_loop_cpu / _cuda (nseg, donors, S, w, dp, dt). */
+VRES_PARTICLE_LOOP(vres_couple_segment_loop, vres_couple_segment_one,
+                   (const vres_donor *donors, vres_segments S, vres_couple_walls w, double dp, double dt),
+                   (donors, S, w, dp, dt))
+
+/* The position (m) of the particle a segment at p with normal n creates: dp/2 inside the band. */
+VRES_HD static inline void vres_couple_birth(const double p[3], const double n[3], double dp, double out[3])
+{
+    for (int a = 0; a < 3; a++) out[a] = p[a] - 0.5 * dp * n[a];
+}
+
+/* Buffer particle i of domain k takes the density and velocity of the domain whose fluid feeds
+ * its band (its region, region.h), interpolated at its position; with too little support there
+ * it is marked for deletion (event[i] = VRES_EV_NOSUPPORT). Other particles are left alone. */
+VRES_HD static inline void vres_couple_buffer_one(size_t i, const vres_region *reg, int nreg, int k, int dim,
+                                                  const vres_donor *donors, const double *pos, const uint8_t *type,
+                                                  float *vel, float *rho, uint8_t *event)
+{
+    if (!vres_type_is_buffer(type[i])) return;
+    int j;
+    if (vres_region_classify(reg, nreg, k, &pos[3 * i], dim, &j) != VRES_REGION_BUFFER || j < 0) return;
+    const vres_donor *D = &donors[j];
+    vres_liu_result r = vres_liu_at(&D->cells, D->o, D->pos, D->vel, D->rho, D->mass, D->type, &pos[3 * i]);
+    if (r.method == VRES_LIU_NOSUPPORT) {
+        event[i] = VRES_EV_NOSUPPORT;
+        return;
+    }
+    rho[i] = (float)r.rho;
+    for (int a = 0; a < 3; a++) vel[3 * i + a] = (float)r.v[a];
+}
+
+/* vres_couple_buffer_loop_cpu / _cuda (n, reg, nreg, k, dim, donors, pos, type, vel, rho, event). */
+VRES_PARTICLE_LOOP(vres_couple_buffer_loop, vres_couple_buffer_one,
+                   (const vres_region *reg, int nreg, int k, int dim, const vres_donor *donors, const double *pos,
+                    const uint8_t *type, float *vel, float *rho, uint8_t *event),
+                   (reg, nreg, k, dim, donors, pos, type, vel, rho, event))
+
+
+/* Classify particle i of domain k (reg: the nreg domains' regions) at its position: fluid and
+ * buffer particles take the type of their region, event[i] says what changed (VRES_EV_*); a
+ * particle outside what the domain keeps is marked for deletion (event DEL_*). Walls and other
+ * types are left alone. */
+VRES_HD static inline void vres_couple_classify_one(size_t i, const vres_region *reg, int nreg, int k, int dim,
+                                                    const double *pos, uint8_t *type, uint8_t *event)
+{
+    const int t = type[i];
+    event[i] = VRES_EV_NONE;
+    if (!vres_type_acts_fluid(t)) return;
+    int j;
+    const int where = vres_region_classify(reg, nreg, k, &pos[3 * i], dim, &j);
+    if (where == VRES_REGION_OUT) {
+        event[i] = vres_type_is_buffer(t) ? VRES_EV_DEL_BUFFER : VRES_EV_DEL_FLUID;
+    } else if (where == VRES_REGION_BUFFER) {
+        if (!vres_type_is_buffer(t)) {
+            type[i] = VRES_PTYPE_BUFFER;
+            event[i] = VRES_EV_TO_BUFFER;
+        }
+    } else if (vres_type_is_buffer(t)) {
+        type[i] = VRES_PTYPE_FLUID;
+        event[i] = VRES_EV_TO_FLUID;
+    }
+}
+
+/* 1 when event e deletes its particle. */
+VRES_HD static inline int vres_couple_event_deletes(int e)
+{
+    return e == VRES_EV_DEL_BUFFER || e == VRES_EV_DEL_FLUID || e == VRES_EV_NOSUPPORT;
+}
+
+/* vres_couple_classify_loop_cpu / _cuda (n, reg, nreg, k, dim, pos, type, event). */
+VRES_PARTICLE_LOOP(vres_couple_classify_loop, vres_couple_classify_one,
+                   (const vres_region *reg, int nreg, int k, int dim, const double *pos, uint8_t *type,
+                    uint8_t *event),
+                   (reg, nreg, k, dim, pos, type, event))
+
+#endif

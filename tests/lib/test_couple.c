@@ -1,0 +1,251 @@
+/* test_couple.c - unit tests of kernels/couple.h, the variable-resolution coupling's physics:
+ * the segment mass flux, the wall gate, the free-surface gate, the classification of particles
+ * by region with its events, and the buffer particles' values from their donor.
+ *
+ * The scene: a 2D donor lattice (dp 0.02 m, h = sqrt(2) dp, Wendland C2, as vres-partition's
+ * root) filling z < 0.3 m over x in [0, 1] m, moving with a linear velocity field; a receiving
+ * child box [0.4, 0.6] x [0.1, 0.2] m at dp 0.01 m with its buffer band 2 h_child wide. A
+ * uniform field is reproduced to rounding by the corrected kernel (interp_liu.h, tested for
+ * exactness there), so the flux of a uniform stream through a segment is rho u A dt to 1e-12
+ * relative: the tolerance is rounding, not physics. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../kernels/couple.h"
+#include "cells.h"
+#include "check_run.h"
+#include "store.h"
+
+#define DP 0.02      /* donor spacing (m) */
+#define RHO0 1000.0  /* reference density (kg/m^3) */
+#define ZTOP 0.3     /* donor free surface (m) */
+
+/* Fail the test when a set-up step fails (not a result being checked). */
+#define REQUIRE(c, msg) ck_assert_msg((c), "set-up failed: %s", (msg))
+
+/* The donor: a domain with its cell list and the vres_donor view of it. */
+typedef struct donor_set {
+    vres_domain d;   /* particles */
+    vres_cells g;    /* cell list */
+    vres_donor v;    /* what the coupling sees */
+} donor_set;
+
+/* A 2D lattice of donor fluid (density rho, velocity (u0 + a x, 0, w0)) over [0,1] x [0,ZTOP],
+ * with a row of wall particles below z = 0 when walls is 1. */
+static donor_set donor_new(double rho, double u0, double a, double w0, int walls)
+{
+    donor_set S;
+    memset(&S, 0, sizeof S);
+    S.d.parent = -1;
+    S.d.dp = DP;
+    S.d.h = sqrt(2.0) * DP;
+    for (int i = 0; i < 50; i++)
+        for (int j = walls ? -3 : 0; j < 15; j++) {
+            double x[3] = {(i + 0.5) * DP, 0, (j + 0.5) * DP};
+            size_t n = vres_domain_push(&S.d, x, j < 0 ? VRES_FIXED : VRES_FLUID, 0);
+            S.d.rho[n] = (float)rho;
+            S.d.vel[3 * n] = (float)(u0 + a * x[0]);
+            S.d.vel[3 * n + 2] = (float)w0;
+            S.d.mass_p[n] = RHO0 * DP * DP;
+        }
+    double lo[3] = {-0.1, 0, -0.1}, hi[3] = {1.1, 0, 0.5};
+    REQUIRE(vres_cells_init(&S.g, 2, 2 * S.d.h, lo, hi, NULL) == 0, "cells init");
+    vres_cells_build(&S.g, S.d.pos, S.d.n);
+    REQUIRE(vres_cells_reorder(&S.g, &S.d) == 0, "cells reorder");
+    S.v.cells = S.g;
+    S.v.pos = S.d.pos, S.v.vel = S.d.vel, S.v.rho = S.d.rho, S.v.mass = S.d.mass_p, S.v.type = S.d.type;
+    S.v.o = vres_liu_defaults(vres_wendland_make(2, S.d.h), RHO0);
+    S.v.dp = DP;
+    return S;
+}
+
+static void donor_free(donor_set *S)
+{
+    vres_cells_free(&S->g);
+    vres_domain_free(&S->d);
+}
+
+/* Regions of a root (whole space) and one child [0.4,0.6] x [0.1,0.2] with buffer 2 h_child,
+ * the root's hole at the box and its inner box 2 h_root inside. */
+static void two_regions(vres_region reg[2])
+{
+    memset(reg, 0, 2 * sizeof *reg);
+    reg[0].parent = -1;
+    reg[1].parent = 0;
+    double lo[3] = {0.4, 0, 0.1}, hi[3] = {0.6, 0, 0.2}, bw = 2 * sqrt(2.0) * 0.01, iw = 2 * sqrt(2.0) * DP;
+    for (int a = 0; a < 3; a++) {
+        reg[1].fluid_lo[a] = reg[1].hole_lo[a] = lo[a];
+        reg[1].fluid_hi[a] = reg[1].hole_hi[a] = hi[a];
+        reg[1].buff_lo[a] = lo[a] - bw, reg[1].buff_hi[a] = hi[a] + bw;
+        reg[1].inner_lo[a] = lo[a] + (a == 1 ? 0 : iw * 0.5), reg[1].inner_hi[a] = hi[a] - (a == 1 ? 0 : iw * 0.5);
+    }
+}
+
+START_TEST(test_dm)
+{
+    const double n[3] = {-1, 0, 0}, zero[3] = {0, 0, 0};
+    const double vin[3] = {2, 0, 0.5}, vout[3] = {-2, 0, 0};
+    /* inflow against the outward normal: rho u A dt; outflow: nothing (it leaves by deletion) */
+    ck_assert_double_eq_tol(vres_couple_dm(1000, vin, zero, n, 0.01, 1e-4), 1000 * 2 * 0.01 * 1e-4, 1e-15);
+    ck_assert_double_eq(vres_couple_dm(1000, vout, zero, n, 0.01, 1e-4), 0);
+    /* a segment moving with the flow sees none of it */
+    ck_assert_double_eq(vres_couple_dm(1000, vin, vin, n, 0.01, 1e-4), 0);
+}
+END_TEST
+
+START_TEST(test_wall_blocks)
+{
+    const double p[3] = {0, 0, 0}, n[3] = {0, 0, -1}, dp = 0.01;
+    const double behind[3] = {0, 0, -0.008}, cone[3] = {0.004, 0, -0.008}, beside[3] = {0.008, 0, 0};
+    const double front[3] = {0, 0, 0.005}, far[3] = {0.02, 0, 0}, on[3] = {0, 0, 0};
+    ck_assert_int_eq(vres_couple_wall_blocks(p, n, behind, dp, 2), 0); /* straight behind, along +n */
+    ck_assert_int_eq(vres_couple_wall_blocks(p, n, cone, dp, 2), 0);   /* 27 degrees off +n */
+    ck_assert_int_eq(vres_couple_wall_blocks(p, n, beside, dp, 2), 1); /* 90 degrees */
+    ck_assert_int_eq(vres_couple_wall_blocks(p, n, front, dp, 2), 1);  /* on the fluid side */
+    ck_assert_int_eq(vres_couple_wall_blocks(p, n, far, dp, 2), 0);    /* beyond dp */
+    ck_assert_int_eq(vres_couple_wall_blocks(p, n, on, dp, 2), 1);     /* on the segment */
+}
+END_TEST
+
+/* Segments of the child's left face (normal -x) inside a uniform stream u along +x accumulate
+ * rho u A dt per step; on the right face (outflow) nothing; above the free surface nothing
+ * (gate closed); next to a wall particle the mass is reset. */
+START_TEST(test_segments)
+{
+    donor_set S = donor_new(1002.5, 1.5, 0, 0, 1);
+    /* the receiving domain's walls: one wall particle beside segment 3 */
+    vres_domain w;
+    memset(&w, 0, sizeof w);
+    double wx[3] = {0.373, 0, 0.005};
+    vres_domain_push(&w, wx, VRES_FIXED, 0);
+    double lo[3] = {-0.1, 0, -0.1}, hi[3] = {1.1, 0, 0.5};
+    vres_cells wg;
+    REQUIRE(vres_cells_init(&wg, 2, 2 * sqrt(2.0) * 0.01, lo, hi, NULL) == 0, "cells");
+    vres_cells_build(&wg, w.pos, w.n);
+    REQUIRE(vres_cells_reorder(&wg, &w) == 0, "reorder");
+    vres_couple_walls W = {wg, w.pos, w.type};
+    enum { NS = 4 };
+    double pos[3 * NS] = {0.37, 0, 0.15, 0.63, 0, 0.15, 0.37, 0, 0.45, 0.37, 0, 0.005};
+    double nrm[3 * NS] = {-1, 0, 0, 1, 0, 0, -1, 0, 0, -1, 0, 0};
+    double area[NS] = {0.01, 0.01, 0.01, 0.01}, vbox[3 * NS] = {0}, mass[NS] = {0, 0, 0, 0.05};
+    int32_t donor[NS] = {0, 0, 0, 0};
+    float rho[NS], vel[3 * NS];
+    uint8_t state[NS];
+    vres_segments G = {pos, nrm, area, donor, vbox, mass, rho, vel, state};
+    const double dt = 1e-4;
+    for (int step = 0; step < 3; step++) vres_couple_segment_loop_cpu(NS, &S.v, G, W, 0.01, dt);
+    ck_assert_int_eq(state[0], VRES_SEG_FLUX);
+    ck_assert_double_eq_tol(mass[0], 3 * 1002.5 * 1.5 * 0.01 * dt, 1e-12 * mass[0]);
+    ck_assert_float_eq_tol(rho[0], 1002.5f, 1e-3f);
+    ck_assert_int_eq(state[1], VRES_SEG_FLUX);
+    ck_assert_double_eq(mass[1], 0);
+    ck_assert_int_eq(state[2], VRES_SEG_NOGATE);
+    ck_assert_double_eq(mass[2], 0);
+    ck_assert_int_eq(state[3], VRES_SEG_WALL);
+    ck_assert_double_eq(mass[3], 0);
+    vres_cells_free(&wg);
+    vres_domain_free(&w);
+    donor_free(&S);
+}
+END_TEST
+
+/* Classification: each class of position for the child and the root, with its event. */
+START_TEST(test_classify)
+{
+    vres_region reg[2];
+    two_regions(reg);
+    vres_domain d;
+    memset(&d, 0, sizeof d);
+    /* child: fluid in the box, buffer in the band (as fluid and as buffer), out beyond it */
+    const double xs[][3] = {{0.5, 0, 0.15}, {0.39, 0, 0.15}, {0.5, 0, 0.21}, {0.3, 0, 0.15}, {0.3, 0, 0.15},
+                            {0.5, 0, 0.15}};
+    const int ts[] = {VRES_FLUID, VRES_FLUID, VRES_BUFFER, VRES_BUFFER, VRES_FLUID, VRES_BUFFER};
+    const int want_t[] = {VRES_FLUID, VRES_BUFFER, VRES_BUFFER, VRES_BUFFER, VRES_FLUID, VRES_FLUID};
+    const int want_e[] = {VRES_EV_NONE, VRES_EV_TO_BUFFER, VRES_EV_NONE, VRES_EV_DEL_BUFFER, VRES_EV_DEL_FLUID,
+                          VRES_EV_TO_FLUID};
+    const size_t n = sizeof ts / sizeof *ts;
+    for (size_t i = 0; i < n; i++) vres_domain_push(&d, xs[i], ts[i], 0);
+    double wall[3] = {0.3, 0, 0.15};
+    vres_domain_push(&d, wall, VRES_FIXED, 0);
+    uint8_t ev[8];
+    vres_couple_classify_loop_cpu(d.n, reg, 2, 1, 2, d.pos, d.type, ev);
+    for (size_t i = 0; i < n; i++) {
+        ck_assert_msg(d.type[i] == want_t[i], "child particle %zu: type %d, want %d", i, d.type[i], want_t[i]);
+        ck_assert_msg(ev[i] == want_e[i], "child particle %zu: event %d, want %d", i, ev[i], want_e[i]);
+    }
+    ck_assert_int_eq(d.type[n], VRES_FIXED); /* walls untouched wherever they are */
+    ck_assert_int_eq(ev[n], VRES_EV_NONE);
+    vres_domain_free(&d);
+    /* root: fluid outside the hole, buffer in the hole's band, deleted inside the inner box */
+    memset(&d, 0, sizeof d);
+    const double xr[][3] = {{0.2, 0, 0.15}, {0.41, 0, 0.15}, {0.5, 0, 0.15}};
+    for (int i = 0; i < 3; i++) vres_domain_push(&d, xr[i], VRES_FLUID, 0);
+    vres_couple_classify_loop_cpu(d.n, reg, 2, 0, 2, d.pos, d.type, ev);
+    ck_assert_int_eq(d.type[0], VRES_FLUID);
+    ck_assert_int_eq(ev[0], VRES_EV_NONE);
+    ck_assert_int_eq(d.type[1], VRES_BUFFER);
+    ck_assert_int_eq(ev[1], VRES_EV_TO_BUFFER);
+    ck_assert_int_eq(ev[2], VRES_EV_DEL_FLUID);
+    ck_assert(vres_couple_event_deletes(ev[2]) && !vres_couple_event_deletes(ev[1]));
+    vres_domain_free(&d);
+}
+END_TEST
+
+/* Buffer particles of the child take the donor's (linear) velocity and density at their
+ * position; one far above the free surface has no support and is marked for deletion; fluid
+ * particles are left alone. */
+START_TEST(test_buffers)
+{
+    donor_set S = donor_new(1001, 0.5, 2.0, -0.25, 0);
+    vres_region reg[2];
+    two_regions(reg);
+    /* a donor array indexed by domain: the root (0) is the donor of the child's band */
+    vres_donor donors[2] = {S.v, S.v};
+    vres_domain d;
+    memset(&d, 0, sizeof d);
+    const double xs[][3] = {{0.385, 0, 0.155}, {0.5, 0, 0.225}, {0.5, 0, 0.15}};
+    for (int i = 0; i < 3; i++) vres_domain_push(&d, xs[i], i < 2 ? VRES_BUFFER : VRES_FLUID, 0);
+    d.rho[2] = 7;
+    /* move the second buffer particle far above the surface, still in the band by region */
+    reg[1].buff_hi[2] = 0.8;
+    d.pos[3 * 1 + 2] = 0.75;
+    uint8_t ev[3] = {0, 0, 0};
+    vres_couple_buffer_loop_cpu(d.n, reg, 2, 1, 2, donors, d.pos, d.type, d.vel, d.rho, ev);
+    ck_assert_float_eq_tol(d.vel[0], (float)(0.5 + 2.0 * 0.385), 1e-5f);
+    ck_assert_float_eq_tol(d.vel[2], -0.25f, 1e-6f);
+    ck_assert_float_eq_tol(d.rho[0], 1001.0f, 1e-3f);
+    ck_assert_int_eq(ev[0], VRES_EV_NONE);
+    ck_assert_int_eq(ev[1], VRES_EV_NOSUPPORT);
+    ck_assert_float_eq(d.rho[2], 7.0f);
+    ck_assert_int_eq(ev[2], VRES_EV_NONE);
+    vres_domain_free(&d);
+    donor_free(&S);
+}
+END_TEST
+
+/* The birth position: dp/2 inside along -n. */
+START_TEST(test_birth)
+{
+    double p[3] = {1, 2, 3}, n[3] = {0, 0, 1}, x[3];
+    vres_couple_birth(p, n, 0.02, x);
+    ck_assert_double_eq(x[0], 1);
+    ck_assert_double_eq(x[1], 2);
+    ck_assert_double_eq_tol(x[2], 2.99, 1e-15);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("couple");
+    TCase *tc = tcase_create("kernels");
+    tcase_add_test(tc, test_dm);
+    tcase_add_test(tc, test_wall_blocks);
+    tcase_add_test(tc, test_segments);
+    tcase_add_test(tc, test_classify);
+    tcase_add_test(tc, test_buffers);
+    tcase_add_test(tc, test_birth);
+    suite_add_tcase(s, tc);
+    return vres_check_run(s);
+}
