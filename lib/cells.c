@@ -1,5 +1,6 @@
 /* cells.c - building the cell-linked list and sorting particle arrays by it (see cells.h). */
 #include "cells.h"
+#include "field.h"
 #include "log.h"
 
 #include <math.h>
@@ -164,15 +165,8 @@ int vres_cells_reorder(vres_cells *g, vres_domain *d)
         vres_error("cells: domain has %zu particles but the cells were built for %zu", d->n, g->n);
         return -1;
     }
-    vres_cells_gather(g, d->pos, 3 * sizeof *d->pos);
-    vres_cells_gather(g, d->vel, 3 * sizeof *d->vel);
-    vres_cells_gather(g, d->rho, sizeof *d->rho);
-    vres_cells_gather(g, d->press, sizeof *d->press);
-    vres_cells_gather(g, d->mass_p, sizeof *d->mass_p);
-    vres_cells_gather(g, d->type, sizeof *d->type);
-    vres_cells_gather(g, d->mk, sizeof *d->mk);
-    vres_cells_gather(g, d->id, sizeof *d->id);
-    vres_cells_gather(g, d->normal, 3 * sizeof *d->normal);
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        vres_cells_gather(g, vres_field_array(d, &vres_fields[k]), vres_fields[k].elem);
     return 0;
 }
 

@@ -44,9 +44,9 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n);
  * element s becomes the old element perm[s]. For per-particle arrays the caller owns. */
 void vres_cells_gather(vres_cells *g, void *array, size_t elem_size);
 
-/* Apply the last build's permutation to every per-particle array of d, so that slot s of the
- * cells is particle s of the domain. perm is kept, so other arrays may follow with
- * vres_cells_gather. Returns 0, or -1 after printing why (d->n differs from g->n). */
+/* Apply the last build's permutation to every per-particle array of d (field.h's table), so
+ * that slot s of the cells is particle s of the domain. perm is kept, so other arrays may
+ * follow with vres_cells_gather. Returns 0, or -1 after printing why (d->n differs from g->n). */
 int vres_cells_reorder(vres_cells *g, vres_domain *d);
 
 /* Map positions along periodic axes into [lo, hi) (a particle that crossed the boundary

@@ -13,6 +13,7 @@
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
 #include "cells.h"
+#include "field.h"
 #include "log.h"
 #include "solver_int.h"
 
@@ -25,9 +26,7 @@ typedef struct cpu_ctx {
     vres_sph_consts C;    /* interaction constants */
     vres_cells cells;     /* cell-linked list over the simulation domain, rebuilt each half step */
     size_t cap;           /* particles the work arrays below have room for */
-    double *pos0;         /* [3n] positions at the step's start (m) */
-    float *vel0;          /* [3n] velocities at the step's start (m/s) */
-    float *rho0;          /* [n] densities at the step's start (kg/m^3) */
+    vres_domain start;    /* the step's start: the state fields of field.h (pos, vel, rho), the others NULL */
     double *ace;          /* [3n] accelerations (m/s^2) */
     double *ar;           /* [n] density rates (kg/m^3/s) */
     double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
@@ -65,9 +64,9 @@ static int cpu_sort(vres_backend *b, int carry)
     if (x->velm1) vres_cells_gather(&x->cells, x->velm1, 3 * sizeof(float));
     if (x->rhom1) vres_cells_gather(&x->cells, x->rhom1, sizeof(float));
     if (!carry) return 0;
-    vres_cells_gather(&x->cells, x->pos0, 3 * sizeof(double));
-    vres_cells_gather(&x->cells, x->vel0, 3 * sizeof(float));
-    vres_cells_gather(&x->cells, x->rho0, sizeof(float));
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (vres_fields[k].state)
+            vres_cells_gather(&x->cells, vres_field_array(&x->start, &vres_fields[k]), vres_fields[k].elem);
     return 0;
 }
 
@@ -76,9 +75,10 @@ static void cpu_save_start(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
-    memcpy(x->pos0, d->pos, 3 * d->n * sizeof *d->pos);
-    memcpy(x->vel0, d->vel, 3 * d->n * sizeof *d->vel);
-    memcpy(x->rho0, d->rho, d->n * sizeof *d->rho);
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (vres_fields[k].state)
+            memcpy(vres_field_array(&x->start, &vres_fields[k]), vres_field_array(d, &vres_fields[k]),
+                   d->n * vres_fields[k].elem);
 }
 
 /* Put the step's start back. */
@@ -86,9 +86,10 @@ static void cpu_restore_start(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
-    memcpy(d->pos, x->pos0, 3 * d->n * sizeof *d->pos);
-    memcpy(d->vel, x->vel0, 3 * d->n * sizeof *d->vel);
-    memcpy(d->rho, x->rho0, d->n * sizeof *d->rho);
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (vres_fields[k].state)
+            memcpy(vres_field_array(d, &vres_fields[k]), vres_field_array(&x->start, &vres_fields[k]),
+                   d->n * vres_fields[k].elem);
 }
 
 /* mDBC wall densities for the current positions, and with SlipMode 2 or 3 the wall velocities
@@ -120,8 +121,8 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
             vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
                                    c->ddt, c->nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(vres_run_pick(c), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
-                                         x->shiftv);
+            pick_interaction2d(vres_run_pick(c), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar,
+                                                        x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
                              x->ar, x->visc, x->shiftv, c->ddt, c->nwall > 0, c->visco_kind, shift);
@@ -149,8 +150,8 @@ static void cpu_predict(vres_backend *b, double dt)
 {
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
-    vres_sph_predict_cpu(d->n, d->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, d->pos, d->vel, d->rho, dt,
-                         x->c.rho0);
+    vres_sph_predict_cpu(d->n, d->type, x->start.pos, x->start.vel, x->start.rho, x->ace, x->ar, d->pos, d->vel, d->rho,
+                         dt, x->c.rho0);
 }
 
 /* The shifting displacement from the last sums and the current velocity (before the update). */
@@ -168,8 +169,8 @@ static void cpu_correct(vres_backend *b, double dt, int shift)
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
     if (shift) shift_compute(x, dt);
-    vres_sph_correct_cpu(d->n, d->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, d->pos, d->vel, d->rho, dt,
-                         x->c.rho0);
+    vres_sph_correct_cpu(d->n, d->type, x->start.pos, x->start.vel, x->start.rho, x->ace, x->ar, d->pos, d->vel, d->rho,
+                         dt, x->c.rho0);
     if (shift) vres_shift_apply_cpu(d->n, x->shiftv, d->pos);
 }
 
@@ -269,9 +270,7 @@ static void cpu_close(vres_backend *b)
     cpu_ctx *x = ctx_of(b);
     if (!x) return;
     vres_cells_free(&x->cells);
-    free(x->pos0);
-    free(x->vel0);
-    free(x->rho0);
+    vres_domain_free(&x->start);
     free(x->ace);
     free(x->ar);
     free(x->visc);
@@ -300,9 +299,9 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
         free(x);
         return -1;
     }
-    x->pos0 = vres_xmalloc(3 * n * sizeof *x->pos0 + 1);
-    x->vel0 = vres_xmalloc(3 * n * sizeof *x->vel0 + 1);
-    x->rho0 = vres_xmalloc(n * sizeof *x->rho0 + 1);
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (vres_fields[k].state)
+            *vres_field_slot(&x->start, &vres_fields[k]) = vres_xmalloc(n * vres_fields[k].elem + 1);
     x->ace = vres_xcalloc(3 * n + 1, sizeof *x->ace);
     x->ar = vres_xcalloc(n + 1, sizeof *x->ar);
     x->visc = vres_xcalloc(n + 1, sizeof *x->visc);

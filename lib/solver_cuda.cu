@@ -26,6 +26,7 @@
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
 #include "cells.h"
+#include "field.h"
 #include "solver_int.h"
 extern "C" { /* C headers without their own extern "C" guard */
 #include "device.h"
@@ -45,18 +46,8 @@ typedef struct cuda_ctx {
     size_t cap;           /* particles the device arrays have room for (the count at open) */
     size_t nbodies;       /* the store's bodies (entries of dmv and dbody) */
 
-    double *pos;          /* [3n] positions (m) */
-    float *vel;           /* [3n] velocities (m/s) */
-    float *rho;           /* [n] densities (kg/m^3) */
-    float *press;         /* [n] pressures (Pa) */
-    double *mass;         /* [n] masses (kg) */
-    uint8_t *type;        /* [n] particle types (store.h) */
-    int32_t *mk;          /* [n] mk of each particle (moving walls find their body by it) */
-    uint64_t *id;         /* [n] particle ids (only carried, for the download's order) */
-    float *normal;        /* [3n] wall normals (m); NULL when the domain has none */
-    double *pos0;         /* [3n] positions at the step's start (m) */
-    float *vel0;          /* [3n] velocities at the step's start (m/s) */
-    float *rho0;          /* [n] densities at the step's start (kg/m^3) */
+    vres_domain dev;      /* the particles: every field of field.h's table in a device array (n, cap unused) */
+    vres_domain start;    /* the step's start: the table's state fields (pos, vel, rho) on the device, others NULL */
     double *ace;          /* [3n] accelerations (m/s^2) */
     double *ar;           /* [n] density rates (kg/m^3/s) */
     double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
@@ -222,24 +213,56 @@ static cuda_ctx *ctx_of(vres_backend *b)
     return (cuda_ctx *)b->ctx;
 }
 
-/* Permute the n-particle array *arr (elements of w values T) by the last sort: gather into the
- * scratch buffer of its element size, then swap the two pointers. Nothing for a NULL array. */
-template <typename T> static void gather(cuda_ctx *x, size_t n, T **arr, size_t w)
+/* Gather n elements of `bytes` bytes each of the device array *arr by perm (element k becomes
+ * the old element perm[k]) into the scratch buffer of its element size, then swap the two
+ * pointers. Nothing for a NULL array. */
+static void gather_bytes(cuda_ctx *x, size_t n, void **arr, size_t bytes, const size_t *perm)
 {
     if (!*arr || x->failed || !n) return;
-    size_t bytes = w * sizeof(T), k = 0;
+    size_t k = 0;
     while (scratch_size[k] != bytes) k++; /* every array's element size has its class */
     void *dst = x->scratch[k];
     unsigned blocks = (unsigned)((n + 255) / 256);
     if (bytes % 8 == 0)
-        gather_kernel<uint64_t><<<blocks, 256>>>(n, bytes / 8, x->hc.perm, (const uint64_t *)*arr, (uint64_t *)dst);
+        gather_kernel<uint64_t><<<blocks, 256>>>(n, bytes / 8, perm, (const uint64_t *)*arr, (uint64_t *)dst);
     else if (bytes % 4 == 0)
-        gather_kernel<uint32_t><<<blocks, 256>>>(n, bytes / 4, x->hc.perm, (const uint32_t *)*arr, (uint32_t *)dst);
+        gather_kernel<uint32_t><<<blocks, 256>>>(n, bytes / 4, perm, (const uint32_t *)*arr, (uint32_t *)dst);
     else
-        gather_kernel<uint8_t><<<blocks, 256>>>(n, bytes, x->hc.perm, (const uint8_t *)*arr, (uint8_t *)dst);
+        gather_kernel<uint8_t><<<blocks, 256>>>(n, bytes, perm, (const uint8_t *)*arr, (uint8_t *)dst);
     if (!launched(x, "gather")) return;
-    x->scratch[k] = (void *)*arr;
-    *arr = (T *)dst;
+    x->scratch[k] = *arr;
+    *arr = dst;
+}
+
+/* Permute the n-particle array *arr (elements of w values T) by the last sort. */
+template <typename T> static void gather(cuda_ctx *x, size_t n, T **arr, size_t w)
+{
+    gather_bytes(x, n, (void **)arr, w * sizeof(T), x->hc.perm);
+}
+
+/* Permute every field of domain set d (device arrays; NULL ones skipped) by the last sort,
+ * only the state fields when state_only. */
+static void gather_fields(cuda_ctx *x, size_t n, vres_domain *d, int state_only)
+{
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (!state_only || vres_fields[k].state)
+            gather_bytes(x, n, vres_field_slot(d, &vres_fields[k]), vres_fields[k].elem, x->hc.perm);
+}
+
+/* Copy the first n particles' fields from src to dst (field.h's table; only the state fields
+ * when state_only; fields NULL on either side are skipped) in direction kind. 1, or 0 after
+ * the failure is reported as what. */
+static int copy_fields(cuda_ctx *x, vres_domain *dst, const vres_domain *src, size_t n, int state_only,
+                       cudaMemcpyKind kind, const char *what)
+{
+    for (int k = 0; k < VRES_NFIELDS; k++) {
+        const vres_field *f = &vres_fields[k];
+        void *to = vres_field_array(dst, f);
+        const void *from = vres_field_array(src, f);
+        if ((state_only && !f->state) || !to || !from) continue;
+        if (!ok(x, cudaMemcpy(to, from, n * f->elem, kind), what)) return 0;
+    }
+    return 1;
 }
 
 /* Sort by cell: keys, CUB's stable radix sort of (key, slot), the cells' begin offsets, then
@@ -249,7 +272,7 @@ static int cu_sort(vres_backend *b, int carry)
     cuda_ctx *x = ctx_of(b);
     size_t n = b->n, bytes = 0;
     if (x->failed) return -1;
-    keys_cuda(n, x->dcells, x->pos, x->key, x->slot);
+    keys_cuda(n, x->dcells, x->dev.pos, x->key, x->slot);
     if (!launched(x, "cell keys") ||
         !ok(x, cub::DeviceRadixSort::SortPairs(NULL, bytes, x->key, x->key_sorted, x->slot, x->hc.perm, (int)n, 0,
                                                x->key_bits), "sort by cell (size)") ||
@@ -262,24 +285,12 @@ static int cu_sort(vres_backend *b, int carry)
     if (!launched(x, "cell offsets") || !ok(x, cudaMemcpy(x->dcells, &x->hc, sizeof x->hc, cudaMemcpyHostToDevice),
                                             "copy the cells"))
         return -1;
-    gather(x, n, &x->pos, 3);
-    gather(x, n, &x->vel, 3);
-    gather(x, n, &x->rho, 1);
-    gather(x, n, &x->press, 1);
-    gather(x, n, &x->mass, 1);
-    gather(x, n, &x->type, 1);
-    gather(x, n, &x->mk, 1);
-    gather(x, n, &x->id, 1);
-    gather(x, n, &x->normal, 3);
+    gather_fields(x, n, &x->dev, 0);
     gather(x, n, &x->xref, 3);
     gather(x, n, &x->mvel, 3);
     gather(x, n, &x->velm1, 3);
     gather(x, n, &x->rhom1, 1);
-    if (carry) {
-        gather(x, n, &x->pos0, 3);
-        gather(x, n, &x->vel0, 3);
-        gather(x, n, &x->rho0, 1);
-    }
+    if (carry) gather_fields(x, n, &x->start, 1);
     x->sorted_n = n;
     return x->failed ? -1 : 0;
 }
@@ -290,10 +301,7 @@ static void cu_save_start(vres_backend *b)
     cuda_ctx *x = ctx_of(b);
     size_t n = b->n;
     if (x->failed) return;
-    const char *what = "save the step start";
-    ok(x, cudaMemcpy(x->pos0, x->pos, 3 * n * sizeof *x->pos, cudaMemcpyDeviceToDevice), what) &&
-        ok(x, cudaMemcpy(x->vel0, x->vel, 3 * n * sizeof *x->vel, cudaMemcpyDeviceToDevice), what) &&
-        ok(x, cudaMemcpy(x->rho0, x->rho, n * sizeof *x->rho, cudaMemcpyDeviceToDevice), what);
+    copy_fields(x, &x->start, &x->dev, n, 1, cudaMemcpyDeviceToDevice, "save the step start");
 }
 
 /* Put the step's start back. */
@@ -302,10 +310,7 @@ static void cu_restore_start(vres_backend *b)
     cuda_ctx *x = ctx_of(b);
     size_t n = b->n;
     if (x->failed) return;
-    const char *what = "restore the step start";
-    ok(x, cudaMemcpy(x->pos, x->pos0, 3 * n * sizeof *x->pos, cudaMemcpyDeviceToDevice), what) &&
-        ok(x, cudaMemcpy(x->vel, x->vel0, 3 * n * sizeof *x->vel, cudaMemcpyDeviceToDevice), what) &&
-        ok(x, cudaMemcpy(x->rho, x->rho0, n * sizeof *x->rho, cudaMemcpyDeviceToDevice), what);
+    copy_fields(x, &x->dev, &x->start, n, 1, cudaMemcpyDeviceToDevice, "restore the step start");
 }
 
 /* mDBC wall densities for the current positions, and with SlipMode 2 or 3 the wall velocities
@@ -315,9 +320,11 @@ static void cu_mdbc(vres_backend *b)
     cuda_ctx *x = ctx_of(b);
     if (x->failed || !(x->c.mdbc && x->c.nnormal)) return;
     if (x->mvel)
-        vres_mdbc_slip_cuda(b->n, x->dcells, x->pos, x->vel, x->rho, x->mass, x->type, x->normal, x->mvel, x->C,
-                            x->c.dim, x->c.slip, 0);
-    else vres_mdbc_cuda(b->n, x->dcells, x->pos, x->rho, x->mass, x->type, x->normal, x->C, x->c.dim);
+        vres_mdbc_slip_cuda(b->n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.mass_p, x->dev.type,
+                            x->dev.normal, x->mvel, x->C, x->c.dim, x->c.slip, 0);
+    else
+        vres_mdbc_cuda(b->n, x->dcells, x->dev.pos, x->dev.rho, x->dev.mass_p, x->dev.type, x->dev.normal, x->C,
+                       x->c.dim);
     launched(x, "mDBC");
 }
 
@@ -331,11 +338,12 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
     *visc_max = 0;
     if (x->failed) return 0;
     cu_mdbc(b);
-    vres_eos_loop_cuda(n, x->rho, x->press, c->rho0, c->B, c->gamma);
+    vres_eos_loop_cuda(n, x->dev.rho, x->dev.press, c->rho0, c->B, c->gamma);
     if (!launched(x, "EOS")) return 0;
     if (c->dim == 2) {
-        vres_sph_split2d_cuda(n, n, x->pos, x->vel, x->rho, x->x2d, x->v2d, x->inv_rho);
-        vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, x->rho, x->press, x->inv_rho, x->mass, x->type};
+        vres_sph_split2d_cuda(n, n, x->dev.pos, x->dev.vel, x->dev.rho, x->x2d, x->v2d, x->inv_rho);
+        vres_sph_2d P = {x->x2d,       x->x2d + n, x->v2d,        x->v2d + n, x->dev.rho,
+                         x->dev.press, x->inv_rho, x->dev.mass_p, x->dev.type};
         if (!launched(x, "2D split arrays") ||
             !ok(x, cudaMemcpy(x->dP, &P, sizeof P, cudaMemcpyHostToDevice), "copy the 2D arrays' set"))
             return 0;
@@ -343,19 +351,21 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
             vres_sph2d_general_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
                                     c->ddt, c->nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(vres_run_pick(c), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc,
-                                         x->shiftv);
+            pick_interaction2d(vres_run_pick(c), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar,
+                                                        x->visc, x->shiftv);
     } else if (c->general)
-        vres_sph_general_cuda(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar,
-                              x->visc, x->shiftv, c->ddt, c->nwall > 0, c->visco_kind, shift);
+        vres_sph_general_cuda(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p,
+                              x->dev.type, x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt, c->nwall > 0, c->visco_kind,
+                              shift);
     else if (shift)
-        x->interact_shift(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar,
-                          x->visc, x->shiftv);
+        x->interact_shift(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type,
+                          x->C, x->ace, x->ar, x->visc, x->shiftv);
     else
-        x->interact(n, x->dcells, x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->C, x->ace, x->ar, x->visc);
+        x->interact(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type, x->C,
+                    x->ace, x->ar, x->visc);
     if (!launched(x, "interaction")) return 0;
     double *a2 = (double *)x->scratch[2]; /* the 8-byte gather scratch is free between sorts */
-    accel2_cuda(n, x->type, x->ace, a2);
+    accel2_cuda(n, x->dev.type, x->ace, a2);
     if (!launched(x, "fluid accelerations") ||
         !ok(x, cub::DeviceReduce::Reduce(NULL, bytes, a2, x->dred, (int)n, max_op(), 0.0), "largest acceleration") ||
         !grow_temp(x, bytes) ||
@@ -378,15 +388,15 @@ static void cu_predict(vres_backend *b, double dt)
 {
     cuda_ctx *x = ctx_of(b);
     if (x->failed) return;
-    vres_sph_predict_cuda(b->n, x->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, x->pos, x->vel, x->rho, dt,
-                          x->c.rho0);
+    vres_sph_predict_cuda(b->n, x->dev.type, x->start.pos, x->start.vel, x->start.rho, x->ace, x->ar, x->dev.pos,
+                          x->dev.vel, x->dev.rho, dt, x->c.rho0);
     launched(x, "predictor");
 }
 
 /* The shifting displacement from the last sums and the current velocity (before the update). */
 static void shift_compute(cuda_ctx *x, size_t n, double dt)
 {
-    vres_shift_cuda(n, x->type, x->vel, x->shiftv, dt, x->c.shift_coef * x->c.h, x->c.shift_tfs, x->c.dim,
+    vres_shift_cuda(n, x->dev.type, x->dev.vel, x->shiftv, dt, x->c.shift_coef * x->c.h, x->c.shift_tfs, x->c.dim,
                     0.1 * x->dp);
     launched(x, "shifting");
 }
@@ -397,9 +407,9 @@ static void cu_correct(vres_backend *b, double dt, int shift)
     cuda_ctx *x = ctx_of(b);
     if (x->failed) return;
     if (shift) shift_compute(x, b->n, dt);
-    vres_sph_correct_cuda(b->n, x->type, x->pos0, x->vel0, x->rho0, x->ace, x->ar, x->pos, x->vel, x->rho, dt,
-                          x->c.rho0);
-    if (shift) vres_shift_apply_cuda(b->n, x->shiftv, x->pos);
+    vres_sph_correct_cuda(b->n, x->dev.type, x->start.pos, x->start.vel, x->start.rho, x->ace, x->ar, x->dev.pos,
+                          x->dev.vel, x->dev.rho, dt, x->c.rho0);
+    if (shift) vres_shift_apply_cuda(b->n, x->shiftv, x->dev.pos);
     launched(x, "corrector");
 }
 
@@ -409,9 +419,9 @@ static void cu_verlet(vres_backend *b, double dt, int euler, int shift)
     cuda_ctx *x = ctx_of(b);
     if (x->failed) return;
     if (shift) shift_compute(x, b->n, dt);
-    vres_sph_verlet_cuda(b->n, x->type, x->pos, x->vel, x->rho, x->velm1, x->rhom1, x->ace, x->ar, dt, euler,
-                         x->c.rho0);
-    if (shift) vres_shift_apply_cuda(b->n, x->shiftv, x->pos);
+    vres_sph_verlet_cuda(b->n, x->dev.type, x->dev.pos, x->dev.vel, x->dev.rho, x->velm1, x->rhom1, x->ace, x->ar, dt,
+                         euler, x->c.rho0);
+    if (shift) vres_shift_apply_cuda(b->n, x->shiftv, x->dev.pos);
     launched(x, "Verlet step");
 }
 
@@ -421,7 +431,8 @@ static void cu_move_walls(vres_backend *b, const vres_motion_state *mv)
     cuda_ctx *x = ctx_of(b);
     if (x->failed || !x->xref) return;
     if (!ok(x, cudaMemcpy(x->dmv, mv, x->nbodies * sizeof *mv, cudaMemcpyHostToDevice), "copy the motions")) return;
-    vres_move_wall_cuda(b->n, x->type, x->mk, x->xref, x->pos, x->vel, x->mvel, x->dmv, x->dbody, x->nbodies);
+    vres_move_wall_cuda(b->n, x->dev.type, x->dev.mk, x->xref, x->dev.pos, x->dev.vel, x->mvel, x->dmv, x->dbody,
+                        x->nbodies);
     launched(x, "moving walls");
 }
 
@@ -431,7 +442,7 @@ static void cu_wrap(vres_backend *b)
     cuda_ctx *x = ctx_of(b);
     const int *per = x->c.periodic;
     if (x->failed || !(per[0] || per[1] || per[2])) return;
-    vres_cells_wrap_loop_cuda(b->n, x->dcells, x->pos);
+    vres_cells_wrap_loop_cuda(b->n, x->dcells, x->dev.pos);
     launched(x, "periodic wrap");
 }
 
@@ -444,8 +455,8 @@ static size_t cu_check(vres_backend *b, size_t *nout)
     *nout = 0;
     if (x->failed) return (size_t)-1;
     if (!ok(x, cudaMemcpy(x->dres, res, sizeof res, cudaMemcpyHostToDevice), "check (reset)")) return (size_t)-1;
-    check_cuda(b->n, x->dcells, x->pos, x->vel, x->rho, x->type, c->rhop_min < c->rhop_max, c->rhop_min, c->rhop_max,
-               x->dres);
+    check_cuda(b->n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.type, c->rhop_min < c->rhop_max, c->rhop_min,
+               c->rhop_max, x->dres);
     if (!launched(x, "check") || !ok(x, cudaMemcpy(res, x->dres, sizeof res, cudaMemcpyDeviceToHost), "check"))
         return (size_t)-1;
     *nout = (size_t)res[1];
@@ -457,19 +468,8 @@ static int cu_download(vres_backend *b, vres_domain *d)
 {
     cuda_ctx *x = ctx_of(b);
     size_t n = b->n;
-    const char *what = "copy the particles to the host";
     if (x->failed) return -1;
-    if (!ok(x, cudaMemcpy(d->pos, x->pos, 3 * n * sizeof *d->pos, cudaMemcpyDeviceToHost), what) ||
-        !ok(x, cudaMemcpy(d->vel, x->vel, 3 * n * sizeof *d->vel, cudaMemcpyDeviceToHost), what) ||
-        !ok(x, cudaMemcpy(d->rho, x->rho, n * sizeof *d->rho, cudaMemcpyDeviceToHost), what) ||
-        !ok(x, cudaMemcpy(d->press, x->press, n * sizeof *d->press, cudaMemcpyDeviceToHost), what) ||
-        !ok(x, cudaMemcpy(d->mass_p, x->mass, n * sizeof *d->mass_p, cudaMemcpyDeviceToHost), what) ||
-        !ok(x, cudaMemcpy(d->type, x->type, n * sizeof *d->type, cudaMemcpyDeviceToHost), what) ||
-        !ok(x, cudaMemcpy(d->mk, x->mk, n * sizeof *d->mk, cudaMemcpyDeviceToHost), what) ||
-        !ok(x, cudaMemcpy(d->id, x->id, n * sizeof *d->id, cudaMemcpyDeviceToHost), what) ||
-        (x->normal && d->normal &&
-         !ok(x, cudaMemcpy(d->normal, x->normal, 3 * n * sizeof *d->normal, cudaMemcpyDeviceToHost), what)))
-        return -1;
+    if (!copy_fields(x, d, &x->dev, n, 0, cudaMemcpyDeviceToHost, "copy the particles to the host")) return -1;
     d->n = n;
     return 0;
 }
@@ -486,16 +486,7 @@ static int cu_upload(vres_backend *b, const vres_domain *d, const double *xref)
         vres_error("cuda backend: upload of %zu particles, more than the %zu it has room for", n, x->cap);
         return -1;
     }
-    if (!ok(x, cudaMemcpy(x->pos, d->pos, 3 * n * sizeof *d->pos, cudaMemcpyHostToDevice), what) ||
-        !ok(x, cudaMemcpy(x->vel, d->vel, 3 * n * sizeof *d->vel, cudaMemcpyHostToDevice), what) ||
-        !ok(x, cudaMemcpy(x->rho, d->rho, n * sizeof *d->rho, cudaMemcpyHostToDevice), what) ||
-        !ok(x, cudaMemcpy(x->press, d->press, n * sizeof *d->press, cudaMemcpyHostToDevice), what) ||
-        !ok(x, cudaMemcpy(x->mass, d->mass_p, n * sizeof *d->mass_p, cudaMemcpyHostToDevice), what) ||
-        !ok(x, cudaMemcpy(x->type, d->type, n * sizeof *d->type, cudaMemcpyHostToDevice), what) ||
-        !ok(x, cudaMemcpy(x->mk, d->mk, n * sizeof *d->mk, cudaMemcpyHostToDevice), what) ||
-        !ok(x, cudaMemcpy(x->id, d->id, n * sizeof *d->id, cudaMemcpyHostToDevice), what) ||
-        (x->normal &&
-         !ok(x, cudaMemcpy(x->normal, d->normal, 3 * n * sizeof *d->normal, cudaMemcpyHostToDevice), what)) ||
+    if (!copy_fields(x, &x->dev, d, n, 0, cudaMemcpyHostToDevice, what) ||
         (x->xref && xref && !ok(x, cudaMemcpy(x->xref, xref, 3 * n * sizeof *xref, cudaMemcpyHostToDevice), what)) ||
         (x->velm1 && !ok(x, cudaMemcpy(x->velm1, d->vel, 3 * n * sizeof *d->vel, cudaMemcpyHostToDevice), what)) ||
         (x->rhom1 && !ok(x, cudaMemcpy(x->rhom1, d->rho, n * sizeof *d->rho, cudaMemcpyHostToDevice), what)) ||
@@ -521,7 +512,7 @@ static size_t cu_count_pairs(vres_backend *b)
     size_t n = b->n, bytes = 0;
     unsigned long long total = 0, *cnt = (unsigned long long *)x->scratch[2]; /* free between sorts */
     if (x->failed || x->sorted_n != n) return 0;
-    pairs_cuda(n, x->dcells, x->pos, x->C.fourh2, cnt);
+    pairs_cuda(n, x->dcells, x->dev.pos, x->C.fourh2, cnt);
     if (!launched(x, "count pairs") ||
         !ok(x, cub::DeviceReduce::Sum(NULL, bytes, cnt, x->dres, (int)n), "sum pairs") || !grow_temp(x, bytes) ||
         !ok(x, cub::DeviceReduce::Sum(x->temp, bytes, cnt, x->dres, (int)n), "sum pairs") ||
@@ -541,8 +532,11 @@ static void cu_close(vres_backend *b)
 {
     cuda_ctx *x = ctx_of(b);
     if (!x) return;
-    void *arrays[] = {x->pos, x->vel, x->rho, x->press, x->mass, x->type, x->mk, x->id, x->normal, x->pos0,
-                      x->vel0, x->rho0, x->ace, x->ar, x->visc, x->shiftv, x->velm1, x->rhom1, x->xref, x->mvel, x->x2d,
+    for (int k = 0; k < VRES_NFIELDS; k++) {
+        release(x, vres_field_array(&x->dev, &vres_fields[k]));
+        release(x, vres_field_array(&x->start, &vres_fields[k]));
+    }
+    void *arrays[] = {x->ace, x->ar, x->visc, x->shiftv, x->velm1, x->rhom1, x->xref, x->mvel, x->x2d,
                       x->v2d, x->inv_rho, x->hc.begin, x->hc.perm, x->dcells, x->key, x->key_sorted, x->slot,
                       x->scratch[0], x->scratch[1], x->scratch[2], x->scratch[3], x->scratch[4], x->temp, x->dC,
                       x->dP, x->dred, x->dres, x->dmv, x->dbody};
@@ -557,15 +551,15 @@ static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
     const run_cfg *c = &x->c;
     size_t n = d->n;
     const char *what = "upload the particles";
-    if (!alloc_copy(x, &x->pos, d->pos, n, 3, what) || !alloc_copy(x, &x->vel, d->vel, n, 3, what) ||
-        !alloc_copy(x, &x->rho, d->rho, n, 1, what) || !alloc_copy(x, &x->press, d->press, n, 1, what) ||
-        !alloc_copy(x, &x->mass, d->mass_p, n, 1, what) || !alloc_copy(x, &x->type, d->type, n, 1, what) ||
-        !alloc_copy(x, &x->mk, d->mk, n, 1, what) || !alloc_copy(x, &x->id, d->id, n, 1, what) ||
-        (d->normal && !alloc_copy(x, &x->normal, d->normal, n, 3, what)))
-        return 0;
+    for (int k = 0; k < VRES_NFIELDS; k++) { /* every field, and the state fields' step-start copies */
+        const vres_field *f = &vres_fields[k];
+        if (!alloc(x, vres_field_slot(&x->dev, f), n * f->elem, what) ||
+            (f->state && !alloc(x, vres_field_slot(&x->start, f), n * f->elem, what)))
+            return 0;
+    }
+    if (!copy_fields(x, &x->dev, d, n, 0, cudaMemcpyHostToDevice, what)) return 0;
     what = "allocate the work arrays";
-    if (!alloc(x, &x->pos0, 3 * n * sizeof *x->pos0, what) || !alloc(x, &x->vel0, 3 * n * sizeof *x->vel0, what) ||
-        !alloc(x, &x->rho0, n * sizeof *x->rho0, what) || !alloc(x, &x->ace, 3 * n * sizeof *x->ace, what) ||
+    if (!alloc(x, &x->ace, 3 * n * sizeof *x->ace, what) ||
         !alloc(x, &x->ar, n * sizeof *x->ar, what) || !alloc(x, &x->visc, n * sizeof *x->visc, what) ||
         !ok(x, cudaMemset(x->ace, 0, 3 * n * sizeof *x->ace), what) ||
         !ok(x, cudaMemset(x->ar, 0, n * sizeof *x->ar), what) ||

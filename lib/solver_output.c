@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "../kernels/eos.h"
+#include "field.h"
 #include "fileio.h"
 #include "log.h"
 #include "solver_run.h"
@@ -218,12 +219,8 @@ static size_t exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_
     for (size_t i = 0; i < d->n; i++) {
         if (vres_run_in_box(c, &d->pos[3 * i])) {
             if (k != i) {
-                memcpy(&d->pos[3 * k], &d->pos[3 * i], 3 * sizeof *d->pos);
-                memcpy(&d->vel[3 * k], &d->vel[3 * i], 3 * sizeof *d->vel);
-                memcpy(&d->normal[3 * k], &d->normal[3 * i], 3 * sizeof *d->normal);
+                vres_field_copy_particle(d, k, d, i);
                 if (xref) memcpy(&xref[3 * k], &xref[3 * i], 3 * sizeof *xref);
-                d->rho[k] = d->rho[i], d->press[k] = d->press[i], d->mass_p[k] = d->mass_p[i];
-                d->type[k] = d->type[i], d->mk[k] = d->mk[i], d->id[k] = d->id[i];
             }
             k++;
             continue;

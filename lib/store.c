@@ -8,6 +8,7 @@
 #include "store.h"
 #include "store_int.h"
 #include "cli.h"
+#include "field.h"
 #include "fileio.h"
 #include "log.h"
 
@@ -151,15 +152,10 @@ vres_domain *vres_store_add_domain(vres_store *s)
 void vres_domain_reserve(vres_domain *d, size_t n)
 {
     if (n <= d->cap) return;
-    d->pos = vres_xrealloc(d->pos, n * 3 * sizeof *d->pos);
-    d->vel = vres_xrealloc(d->vel, n * 3 * sizeof *d->vel);
-    d->rho = vres_xrealloc(d->rho, n * sizeof *d->rho);
-    d->press = vres_xrealloc(d->press, n * sizeof *d->press);
-    d->mass_p = vres_xrealloc(d->mass_p, n * sizeof *d->mass_p);
-    d->type = vres_xrealloc(d->type, n * sizeof *d->type);
-    d->mk = vres_xrealloc(d->mk, n * sizeof *d->mk);
-    d->id = vres_xrealloc(d->id, n * sizeof *d->id);
-    d->normal = vres_xrealloc(d->normal, n * 3 * sizeof *d->normal);
+    for (int k = 0; k < VRES_NFIELDS; k++) {
+        void **a = vres_field_slot(d, &vres_fields[k]);
+        *a = vres_xrealloc(*a, n * vres_fields[k].elem);
+    }
     d->cap = n;
 }
 
@@ -167,17 +163,11 @@ size_t vres_domain_push(vres_domain *d, const double pos[3], int type, int mk)
 {
     if (d->n == d->cap) vres_domain_reserve(d, d->cap ? 2 * d->cap : 1024);
     size_t i = d->n++;
-    for (int c = 0; c < 3; c++) {
-        d->pos[3 * i + c] = pos[c];
-        d->vel[3 * i + c] = 0;
-        d->normal[3 * i + c] = 0;
-    }
-    d->rho[i] = 0;
-    d->press[i] = 0;
-    d->mass_p[i] = 0;
+    for (int k = 0; k < VRES_NFIELDS; k++) /* every field zero (all-bits-zero is 0 for each type) */
+        memset((char *)vres_field_array(d, &vres_fields[k]) + i * vres_fields[k].elem, 0, vres_fields[k].elem);
+    for (int c = 0; c < 3; c++) d->pos[3 * i + c] = pos[c];
     d->type[i] = (uint8_t)type;
     d->mk[i] = mk;
-    d->id[i] = 0;
     return i;
 }
 
@@ -191,22 +181,11 @@ size_t vres_domain_count(const vres_domain *d, int type)
 
 void vres_domain_free(vres_domain *d)
 {
-    free(d->pos);
-    free(d->vel);
-    free(d->rho);
-    free(d->press);
-    free(d->mass_p);
-    free(d->type);
-    free(d->mk);
-    free(d->id);
-    free(d->normal);
-    d->pos = NULL;
-    d->vel = d->normal = NULL;
-    d->rho = d->press = NULL;
-    d->mass_p = NULL;
-    d->type = NULL;
-    d->mk = NULL;
-    d->id = NULL;
+    for (int k = 0; k < VRES_NFIELDS; k++) {
+        void **a = vres_field_slot(d, &vres_fields[k]);
+        free(*a);
+        *a = NULL;
+    }
     d->n = d->cap = 0;
 }
 
@@ -459,6 +438,36 @@ static void end_group(wctx *w, hid_t g)
     if (g >= 0 && H5Gclose(g) < 0) wfail(w, -1, "a group", 0);
 }
 
+/* The HDF5 file type a per-particle field is written as (little-endian, its own width). */
+static hid_t field_file_type(const vres_field *f)
+{
+    switch (f->kind) {
+    case VRES_FIELD_F64: return H5T_IEEE_F64LE;
+    case VRES_FIELD_F32: return H5T_IEEE_F32LE;
+    case VRES_FIELD_U8: return H5T_STD_U8LE;
+    case VRES_FIELD_I32: return H5T_STD_I32LE;
+    default: return H5T_STD_U64LE;
+    }
+}
+
+/* The HDF5 memory type of a per-particle field's values. */
+static hid_t field_mem_type(const vres_field *f)
+{
+    switch (f->kind) {
+    case VRES_FIELD_F64: return H5T_NATIVE_DOUBLE;
+    case VRES_FIELD_F32: return H5T_NATIVE_FLOAT;
+    case VRES_FIELD_U8: return H5T_NATIVE_UINT8;
+    case VRES_FIELD_I32: return H5T_NATIVE_INT32;
+    default: return H5T_NATIVE_UINT64;
+    }
+}
+
+/* The HDF5 class a stored field's dataset must have (reals for the float kinds). */
+static H5T_class_t field_class(const vres_field *f)
+{
+    return f->kind == VRES_FIELD_F64 || f->kind == VRES_FIELD_F32 ? H5T_FLOAT : H5T_INTEGER;
+}
+
 /* Dataset name of loc holding n rows of ncomp values (ncomp 1: a vector), chunked, shuffled
  * and deflated. An empty one is contiguous: HDF5 chunks cannot have zero size. */
 static void put_array(wctx *w, hid_t loc, const char *name, hid_t ftype, hid_t mtype, size_t n, int ncomp,
@@ -614,15 +623,12 @@ static void write_domains(wctx *w, hid_t f, const vres_store *s)
         put_d(w, dg, "overlappingh", d->overlappingh);
         put_i(w, dg, "tracking_mk", d->tracking_mk);
         put_u64(w, dg, "count", d->n);
-        put_array(w, dg, "Position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d->n, 3, d->pos);
-        put_array(w, dg, "Velocity", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, d->n, 3, d->vel);
-        put_array(w, dg, "Density", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, d->n, 1, d->rho);
-        put_array(w, dg, "Pressure", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, d->n, 1, d->press);
-        put_array(w, dg, "Mass", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d->n, 1, d->mass_p);
-        put_array(w, dg, "Type", H5T_STD_U8LE, H5T_NATIVE_UINT8, d->n, 1, d->type);
-        put_array(w, dg, "Mk", H5T_STD_I32LE, H5T_NATIVE_INT32, d->n, 1, d->mk);
-        put_array(w, dg, "Id", H5T_STD_U64LE, H5T_NATIVE_UINT64, d->n, 1, d->id);
-        put_array(w, dg, "Normal", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, d->n, 3, d->normal);
+        for (int i = 0; i < VRES_NFIELDS; i++) {
+            const vres_field *fd = &vres_fields[i];
+            if (fd->dataset)
+                put_array(w, dg, fd->dataset, field_file_type(fd), field_mem_type(fd), d->n, fd->ncomp,
+                          vres_field_array(d, fd));
+        }
         end_group(w, dg);
     }
     end_group(w, g);
@@ -736,11 +742,12 @@ static int check_writable(const vres_store *s, const char *path)
     }
     for (size_t k = 0; k < s->ndomains; k++) {
         const vres_domain *d = &s->dom[k];
-        if (d->n > 0 && (!d->pos || !d->vel || !d->rho || !d->press || !d->mass_p || !d->type || !d->mk ||
-                         !d->id || !d->normal)) {
-            vres_error("%s: cannot write store: domain %zu has %zu particles but no particle arrays", path, k, d->n);
-            return -1;
-        }
+        for (int i = 0; i < VRES_NFIELDS && d->n > 0; i++)
+            if (vres_fields[i].dataset && !vres_field_array(d, &vres_fields[i])) {
+                vres_error("%s: cannot write store: domain %zu has %zu particles but no particle arrays", path, k,
+                           d->n);
+                return -1;
+            }
     }
     return 0;
 }
@@ -1271,30 +1278,24 @@ static void read_geometry(rctx *r, hid_t f, vres_store *s)
  * allocate), then the data, then per-particle checks. */
 static void read_particles(rctx *r, hid_t g, vres_domain *d, size_t n)
 {
-    /* Position must be double: long domains need its precision (DESIGN section 3). */
-    struct {
-        const char *name;  /* dataset */
-        H5T_class_t cls;   /* class expected */
-        size_t minsize;    /* least bytes per value for reals */
-        hid_t mtype;       /* memory type */
-        int ncomp;         /* components per particle */
-    } ds[] = {
-        {"Position", H5T_FLOAT, 8, H5T_NATIVE_DOUBLE, 3}, {"Velocity", H5T_FLOAT, 4, H5T_NATIVE_FLOAT, 3},
-        {"Density", H5T_FLOAT, 4, H5T_NATIVE_FLOAT, 1},   {"Pressure", H5T_FLOAT, 4, H5T_NATIVE_FLOAT, 1},
-        {"Mass", H5T_FLOAT, 4, H5T_NATIVE_DOUBLE, 1},     {"Type", H5T_INTEGER, 0, H5T_NATIVE_UINT8, 1},
-        {"Mk", H5T_INTEGER, 0, H5T_NATIVE_INT32, 1},      {"Id", H5T_INTEGER, 0, H5T_NATIVE_UINT64, 1},
-        {"Normal", H5T_FLOAT, 4, H5T_NATIVE_FLOAT, 3},
-    };
-    enum { NDS = sizeof ds / sizeof ds[0] };
-    for (int i = 0; i < NDS; i++) get_array(r, g, ds[i].name, ds[i].cls, ds[i].minsize, ds[i].mtype, n, ds[i].ncomp, NULL);
+    for (int i = 0; i < VRES_NFIELDS; i++) { /* the shapes (and types) of the stored fields */
+        const vres_field *fd = &vres_fields[i];
+        if (fd->dataset)
+            get_array(r, g, fd->dataset, field_class(fd), fd->file_min, field_mem_type(fd), n, fd->ncomp, NULL);
+    }
     if (r->bad || r->header_only) {
         d->n = r->bad ? 0 : n;
         return;
     }
     vres_domain_reserve(d, n);
     d->n = n;
-    void *dst[NDS] = {d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, d->mk, d->id, d->normal};
-    for (int i = 0; i < NDS; i++) get_array(r, g, ds[i].name, ds[i].cls, ds[i].minsize, ds[i].mtype, n, ds[i].ncomp, dst[i]);
+    for (int i = 0; i < VRES_NFIELDS; i++) {
+        const vres_field *fd = &vres_fields[i];
+        if (fd->dataset)
+            get_array(r, g, fd->dataset, field_class(fd), fd->file_min, field_mem_type(fd), n, fd->ncomp,
+                      vres_field_array(d, fd));
+        else memset(vres_field_array(d, fd), 0, n * fd->elem);
+    }
     if (r->bad) return;
     char p[256];
     obj_path(g, p, sizeof p);

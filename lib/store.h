@@ -35,7 +35,8 @@ const char *vres_ptype_name(int type);
 int vres_ptype_is_wall(int type);
 
 /* One particle set: the root domain or a refinement sub-domain. Arrays hold n entries
- * (3n for vectors, interleaved x,y,z) and have room for cap. */
+ * (3n for vectors, interleaved x,y,z) and have room for cap. Each per-particle array has its
+ * row in lib/field.h's table, which every whole-particle copy, sort and file access walks. */
 typedef struct vres_domain {
     int parent;           /* index of the parent domain, -1 for the root */
     double dp;            /* particle spacing (m) */
