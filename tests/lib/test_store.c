@@ -110,8 +110,8 @@ static vres_store *sample(void)
                                           .axis_p1 = {0, -1, 0}, .axis_p2 = {0, 1, 0}, .vel_prev = 1};
     s->nboxes = 2;
     s->box = vres_xcalloc(2, sizeof *s->box);
-    s->box[0] = (vres_box){-1, {0.2, 0, 0}, {0.2, 0, 0.3}, 2, 2, 1, 3};
-    s->box[1] = (vres_box){0, {0.25, 0, 0.05}, {0.1, 0, 0.1}, 2, 3, 0.5, -1};
+    s->box[0] = (vres_box){-1, {0.2, 0, 0}, {0.2, 0, 0.3}, 2, 2, 1, 3, 0};
+    s->box[1] = (vres_box){0, {0.25, 0, 0.05}, {0.1, 0, 0.1}, 2, 3, 0.5, -1, 0};
     s->gauges_xml = vres_xstrdup("<gauges><velocity name=\"g1\"/></gauges>");
     return s;
 }
