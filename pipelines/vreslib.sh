@@ -51,15 +51,27 @@ param() { attr "/Parameters/$1" "$2"; }
 # gravity_norm FILE: |g| (m/s^2) from the gravity parameter.
 gravity_norm() { attrv /Parameters/gravity "$1" | awk '{s += $1 * $1} END {printf "%.15g\n", sqrt(s)}'; }
 
-# particles FILE: one line per particle of the root domain: type x y z vx vy vz rho p, the
-# numbers of vres-store(5) (type 0 fluid, 2 fixed wall, 3 moving wall...).
+# particles FILE [K]: one line per particle of domain K (default 0, the root): type x y z vx vy
+# vz rho p, the numbers of vres-store(5) (type 0 fluid, 1 buffer, 2 fixed wall, 3 moving wall...).
 particles() {
-    local f=$1
-    paste <(values /Domains/D0/Type "$f") \
-          <(values /Domains/D0/Position "$f" | paste - - -) \
-          <(values /Domains/D0/Velocity "$f" | paste - - -) \
-          <(values /Domains/D0/Density "$f") \
-          <(values /Domains/D0/Pressure "$f")
+    local f=$1 k=${2:-0}
+    paste <(values /Domains/D$k/Type "$f") \
+          <(values /Domains/D$k/Position "$f" | paste - - -) \
+          <(values /Domains/D$k/Velocity "$f" | paste - - -) \
+          <(values /Domains/D$k/Density "$f") \
+          <(values /Domains/D$k/Pressure "$f")
+}
+
+# domains FILE: the number of domains of a store (1 for a single-resolution one).
+domains() { h5ls "$1/Domains" 2>/dev/null | grep -c '^D[0-9]'; }
+
+# particles_all FILE: the particles of every domain, as `particles` with the domain index
+# appended as a tenth column. Fluid particles (type 0) of different domains never share a
+# point: each domain's fluid lies in its own fluid region (buffers, type 1, are the copies).
+particles_all() {
+    local f=$1 k n
+    n=$(domains "$f")
+    for ((k = 0; k < n; k++)); do particles "$f" "$k" | awk -v k="$k" '{print $0 "\t" k}'; done
 }
 
 # snapshots RUNDIR: the numbered snapshots of a run in time order (not snap_last_good.h5).
