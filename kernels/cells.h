@@ -26,6 +26,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "device.h"
 
@@ -106,6 +107,17 @@ VRES_HD static inline void vres_cells_wrap_one(size_t i, const vres_cells *g, do
 
 /* vres_cells_wrap_loop_cpu / _cuda (n, g, pos): vres_cells_wrap_one over n particles. */
 VRES_PARTICLE_LOOP(vres_cells_wrap_loop, vres_cells_wrap_one, (const vres_cells *g, double *pos), (g, pos))
+
+/* mark[i] = 1 when particle i lies outside the box of g (it left the domain), else 0. */
+VRES_HD static inline void vres_cells_mark_out_one(size_t i, const vres_cells *g, const double *pos, uint8_t *mark)
+{
+    int c[3];
+    mark[i] = !vres_cells_locate(g, pos + 3 * i, c);
+}
+
+/* vres_cells_mark_out_cpu / _cuda (n, g, pos, mark). */
+VRES_PARTICLE_LOOP(vres_cells_mark_out, vres_cells_mark_out_one,
+                   (const vres_cells *g, const double *pos, uint8_t *mark), (g, pos, mark))
 
 /* The non-empty cells among the 3^dim around position x (m), with their periodic shifts, into
  * r[0..27). Returns how many; 0 when x is outside the box. Every particle within the search

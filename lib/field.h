@@ -1,7 +1,7 @@
 /* field.h - the table of a domain's per-particle fields: one row per array of vres_domain
  * (store.h), saying where it lives, what it holds and how the store file keeps it. Everything
  * that handles particles as a whole walks this table: the store's read, write and allocation,
- * the cell sort's gathers, the backends' uploads, downloads, step-start copies, removal and
+ * the cell sort's gathers, the backends' set-up, downloads, step-start copies, removal and
  * append. So a new per-particle field is one row here (and its member in vres_domain), and no
  * copy, sort or compaction can forget it. The store's file layout (man/man5/vres-store.5) is
  * the rows with a dataset name, in the table's order. */

@@ -130,7 +130,7 @@ static int time_loop(vres_store *s, vres_backend *b, const run_cfg *c, run_resum
         if ((rc = vres_run_after_step(s, b, c, r, f, t + dt, step + 1, t, step)) != VRES_RUN_OK) break;
         if (r->nexcluded != nex) {
             if (c->verlet) verlet_count = c->verlet_steps - 1; /* the previous step is gone: Euler next */
-            b->move_walls(b, mv); /* the walls' motion velocities, reset by the upload */
+            b->move_walls(b, mv); /* placed again, as the runs did when exclusion went through the host */
         }
         t += dt;
         step++;

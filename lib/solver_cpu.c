@@ -17,6 +17,9 @@
 #include "log.h"
 #include "solver_int.h"
 
+/* Most per-particle arrays of the backend's own (cpu_ctx's work list). */
+#define CPU_NWORK 16
+
 /* The CPU backend's state: the domain's arrays are the store's; these are the rest. */
 typedef struct cpu_ctx {
     vres_wall_body *body; /* [nbodies] which bodies move, by mkbound (for the moving walls); NULL without them */
@@ -25,7 +28,7 @@ typedef struct cpu_ctx {
     run_cfg c;            /* the run configuration */
     vres_sph_consts C;    /* interaction constants */
     vres_cells cells;     /* cell-linked list over the simulation domain, rebuilt each half step */
-    size_t cap;           /* particles the work arrays below have room for */
+    size_t cap;           /* particles the domain's arrays and the work arrays below have room for */
     vres_domain start;    /* the step's start: the state fields of field.h (pos, vel, rho), the others NULL */
     double *ace;          /* [3n] accelerations (m/s^2) */
     double *ar;           /* [n] density rates (kg/m^3/s) */
@@ -39,8 +42,11 @@ typedef struct cpu_ctx {
     double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
     float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
     double *inv_rho;      /* [n] 2D: 1/density of each particle (m^3/kg) */
+    uint8_t *mark;        /* [n] the marks that remove reads (marks, mark_out) */
     vres_interact_fn interact;             /* 3D variant without shifting sums */
     vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
+    vres_work work[CPU_NWORK]; /* the arrays above that exist for this scene, with how each follows the particles */
+    int nwork;                 /* entries of work */
 } cpu_ctx;
 
 /* The interaction variant choosers (kernels/sph_pick.h) over this backend's loops. */
@@ -59,14 +65,9 @@ static int cpu_sort(vres_backend *b, int carry)
     vres_domain *d = x->d;
     vres_cells_build(&x->cells, d->pos, d->n);
     if (vres_cells_reorder(&x->cells, d) != 0) return -1;
-    if (x->xref) vres_cells_gather(&x->cells, x->xref, 3 * sizeof(double));
-    if (x->mvel) vres_cells_gather(&x->cells, x->mvel, 3 * sizeof(float));
-    if (x->velm1) vres_cells_gather(&x->cells, x->velm1, 3 * sizeof(float));
-    if (x->rhom1) vres_cells_gather(&x->cells, x->rhom1, sizeof(float));
-    if (!carry) return 0;
-    for (int k = 0; k < VRES_NFIELDS; k++)
-        if (vres_fields[k].state)
-            vres_cells_gather(&x->cells, vres_field_array(&x->start, &vres_fields[k]), vres_fields[k].elem);
+    for (int k = 0; k < x->nwork; k++)
+        if (x->work[k].follow == VRES_WORK_CARRY || (carry && x->work[k].follow == VRES_WORK_START))
+            vres_cells_gather(&x->cells, *x->work[k].p, x->work[k].elem);
     return 0;
 }
 
@@ -226,28 +227,108 @@ static int cpu_download(vres_backend *b, vres_domain *d)
     return 0;
 }
 
-/* Take the (compacted) domain back: the count and the moving walls' reference. */
-static int cpu_upload(vres_backend *b, const vres_domain *d, const double *xref)
+/* How many particles of type t. */
+static size_t cpu_count(vres_backend *b, int t)
 {
     cpu_ctx *x = ctx_of(b);
-    if (d != x->d || d->n > x->cap) {
-        vres_error("cpu backend: upload of a domain other than the one opened, or grown (%zu > %zu particles)", d->n,
-                   x->cap);
-        return -1;
-    }
-    b->n = d->n;
-    if (x->xref && xref && xref != x->xref) memcpy(x->xref, xref, 3 * d->n * sizeof *xref);
-    if (x->velm1) memcpy(x->velm1, d->vel, 3 * d->n * sizeof *x->velm1);
-    if (x->rhom1) memcpy(x->rhom1, d->rho, d->n * sizeof *x->rhom1);
-    if (x->mvel) memset(x->mvel, 0, 3 * d->n * sizeof *x->mvel);
+    const uint8_t *type = x->d->type;
+    size_t k = 0;
+#pragma omp parallel for reduction(+ : k) schedule(static)
+    for (size_t i = 0; i < b->n; i++) k += type[i] == t;
+    return k;
+}
+
+/* The marks array. */
+static uint8_t *cpu_marks(vres_backend *b)
+{
+    return ctx_of(b)->mark;
+}
+
+/* Mark the particles outside the cells' box. */
+static size_t cpu_mark_out(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_cells_mark_out_cpu(b->n, &x->cells, x->d->pos, x->mark);
+    size_t k = 0;
+#pragma omp parallel for reduction(+ : k) schedule(static)
+    for (size_t i = 0; i < b->n; i++) k += x->mark[i];
+    return k;
+}
+
+/* The marked particles into the host domain out. */
+static int cpu_get_marked(vres_backend *b, const uint8_t *mark, vres_domain *out)
+{
+    cpu_ctx *x = ctx_of(b);
+    size_t k = 0;
+    for (size_t i = 0; i < b->n; i++) k += mark[i] != 0;
+    vres_domain_reserve(out, k);
+    out->n = 0;
+    for (size_t i = 0; i < b->n; i++)
+        if (mark[i]) vres_field_copy_particle(out, out->n++, x->d, i);
     return 0;
 }
 
-/* The moving walls' reference positions in slot order. */
-static void cpu_get_xref(vres_backend *b, double *xref)
+/* The entry of particle i of work array w (bytes). */
+static char *work_at(const vres_work *w, size_t i)
+{
+    return (char *)*w->p + i * w->elem;
+}
+
+/* Give work array w's entries [i0, i1) the values they start with: the field w->from's (d's
+ * particles i0..i1), or zero. */
+static void work_init(const vres_work *w, const vres_domain *d, size_t i0, size_t i1)
+{
+    if (i1 <= i0) return;
+    if (w->from < 0) memset(work_at(w, i0), 0, (i1 - i0) * w->elem);
+    else memcpy(work_at(w, i0), (const char *)vres_field_array(d, &vres_fields[w->from]) + i0 * w->elem,
+                (i1 - i0) * w->elem);
+}
+
+/* Make room for at least n particles in the domain's arrays and the work arrays: grown by half
+ * again (with a minimum), so that appending a few particles each step rarely reallocates. */
+static void cpu_grow(cpu_ctx *x, size_t n)
+{
+    if (n <= x->cap) return;
+    size_t cap = x->cap + x->cap / 2 + 64;
+    if (cap < n) cap = n;
+    vres_domain_reserve(x->d, cap);
+    for (int k = 0; k < x->nwork; k++) *x->work[k].p = vres_xrealloc(*x->work[k].p, cap * x->work[k].elem + 1);
+    x->mark = vres_xrealloc(x->mark, cap + 1);
+    x->cap = cap;
+}
+
+/* Drop the marked particles, keeping the order of the others and all their state. */
+static int cpu_remove(vres_backend *b, const uint8_t *mark)
 {
     cpu_ctx *x = ctx_of(b);
-    if (x->xref && xref != x->xref) memcpy(xref, x->xref, 3 * x->d->n * sizeof *xref);
+    vres_domain *d = x->d;
+    size_t k = 0;
+    for (size_t i = 0; i < b->n; i++) {
+        if (mark[i]) continue;
+        if (k != i) {
+            vres_field_copy_particle(d, k, d, i);
+            for (int w = 0; w < x->nwork; w++)
+                if (x->work[w].follow != VRES_WORK_SCRATCH) memcpy(work_at(&x->work[w], k), work_at(&x->work[w], i),
+                                                                   x->work[w].elem);
+        }
+        k++;
+    }
+    b->n = d->n = k;
+    return 0;
+}
+
+/* Add the particles of src after the others. */
+static int cpu_append(vres_backend *b, const vres_domain *src)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    size_t n0 = b->n, n1 = n0 + src->n;
+    cpu_grow(x, n1);
+    for (size_t i = 0; i < src->n; i++) vres_field_copy_particle(d, n0 + i, src, i);
+    b->n = d->n = n1;
+    for (int w = 0; w < x->nwork; w++)
+        if (x->work[w].follow != VRES_WORK_SCRATCH) work_init(&x->work[w], d, n0, n1);
+    return 0;
 }
 
 /* Ordered pairs within 2h (cells as of the last sort; positions now). */
@@ -270,21 +351,47 @@ static void cpu_close(vres_backend *b)
     cpu_ctx *x = ctx_of(b);
     if (!x) return;
     vres_cells_free(&x->cells);
-    vres_domain_free(&x->start);
-    free(x->ace);
-    free(x->ar);
-    free(x->visc);
-    free(x->xref);
-    free(x->mvel);
-    free(x->shiftv);
-    free(x->x2d);
-    free(x->v2d);
-    free(x->inv_rho);
-    free(x->velm1);
-    free(x->rhom1);
+    for (int k = 0; k < x->nwork; k++) free(*x->work[k].p);
+    free(x->mark);
     free(x->body);
     free(x);
     b->ctx = NULL;
+}
+
+/* Add the array *p (elem bytes per particle, following the particles as follow says, starting
+ * from field `from`'s values or zero) to the work list of x. */
+static void add_work(cpu_ctx *x, void *p, size_t elem, int follow, int from)
+{
+    vres_work w = {(void **)p, elem, follow, from};
+    x->work[x->nwork++] = w;
+}
+
+/* The work arrays the scene needs, in x's list, each allocated for x->cap particles and
+ * starting from its field's values (or zero). */
+static void cpu_work_setup(cpu_ctx *x, const run_cfg *c)
+{
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (vres_fields[k].state)
+            add_work(x, vres_field_slot(&x->start, &vres_fields[k]), vres_fields[k].elem, VRES_WORK_START, k);
+    add_work(x, &x->ace, 3 * sizeof *x->ace, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->ar, sizeof *x->ar, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->visc, sizeof *x->visc, VRES_WORK_SCRATCH, -1);
+    if (c->shift) add_work(x, &x->shiftv, 4 * sizeof *x->shiftv, VRES_WORK_SCRATCH, -1);
+    if (c->dim == 2) { /* split by axis: x2d holds n x then n z values, so 2 per particle */
+        add_work(x, &x->x2d, 2 * sizeof *x->x2d, VRES_WORK_SCRATCH, -1);
+        add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);
+        add_work(x, &x->inv_rho, sizeof *x->inv_rho, VRES_WORK_SCRATCH, -1);
+    }
+    /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
+    if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
+    if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
+    if (c->nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
+    for (int k = 0; k < x->nwork; k++) {
+        *x->work[k].p = vres_xmalloc(x->cap * x->work[k].elem + 1);
+        work_init(&x->work[k], x->d, 0, x->d->n);
+    }
+    x->mark = vres_xcalloc(x->cap + 1, 1);
 }
 
 int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c)
@@ -299,31 +406,11 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
         free(x);
         return -1;
     }
-    for (int k = 0; k < VRES_NFIELDS; k++)
-        if (vres_fields[k].state)
-            *vres_field_slot(&x->start, &vres_fields[k]) = vres_xmalloc(n * vres_fields[k].elem + 1);
-    x->ace = vres_xcalloc(3 * n + 1, sizeof *x->ace);
-    x->ar = vres_xcalloc(n + 1, sizeof *x->ar);
-    x->visc = vres_xcalloc(n + 1, sizeof *x->visc);
-    if (c->shift) x->shiftv = vres_xcalloc(4 * n + 1, sizeof *x->shiftv);
-    if (c->dim == 2) {
-        x->x2d = vres_xmalloc(2 * n * sizeof *x->x2d + 1);
-        x->v2d = vres_xmalloc(2 * n * sizeof *x->v2d + 1);
-        x->inv_rho = vres_xmalloc(n * sizeof *x->inv_rho + 1);
-    }
-    if (c->verlet) { /* the previous step of the first is the start itself, as DualSPHysics */
-        x->velm1 = vres_xmalloc(3 * n * sizeof *x->velm1 + 1);
-        x->rhom1 = vres_xmalloc(n * sizeof *x->rhom1 + 1);
-        memcpy(x->velm1, d->vel, 3 * n * sizeof *x->velm1);
-        memcpy(x->rhom1, d->rho, n * sizeof *x->rhom1);
-    }
+    cpu_work_setup(x, c);
     if (c->nmoving) {
-        x->xref = vres_xmalloc(3 * n * sizeof *x->xref + 1);
-        memcpy(x->xref, d->pos, 3 * n * sizeof *x->xref);
         x->nbodies = s->nbodies;
         x->body = vres_wall_bodies(s);
     }
-    if (c->mdbc && c->slip >= 2) x->mvel = vres_xcalloc(3 * n + 1, sizeof *x->mvel);
     x->interact = pick_interaction(vres_run_pick(c));
     x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c)) : NULL;
     memset(b, 0, sizeof *b);
@@ -342,8 +429,12 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     b->mdbc = cpu_mdbc;
     b->check = cpu_check;
     b->download = cpu_download;
-    b->upload = cpu_upload;
-    b->get_xref = cpu_get_xref;
+    b->count = cpu_count;
+    b->marks = cpu_marks;
+    b->mark_out = cpu_mark_out;
+    b->get_marked = cpu_get_marked;
+    b->remove = cpu_remove;
+    b->append = cpu_append;
     b->count_pairs = cpu_count_pairs;
     b->close = cpu_close;
     return 0;

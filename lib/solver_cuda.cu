@@ -19,6 +19,10 @@
 
 #include <cub/cub.cuh>
 
+extern "C" { /* the store's C header, first: the headers below include it without a guard of their own */
+#include "store.h"
+}
+
 #include "../kernels/state.h"
 #include "../kernels/eos.h"
 #include "../kernels/mdbc.h"
@@ -36,6 +40,9 @@ extern "C" { /* C headers without their own extern "C" guard */
 /* Gather scratch classes: element sizes (bytes) of the per-particle arrays that follow the sort. */
 static const size_t scratch_size[5] = {1, 4, 8, 12, 24};
 
+/* Most per-particle device arrays of the backend's own (cuda_ctx's work list). */
+#define CUDA_NWORK 32
+
 /* The CUDA backend's state. Pointers named d... or holding particle data are device memory. */
 typedef struct cuda_ctx {
     run_cfg c;            /* the run configuration */
@@ -43,7 +50,7 @@ typedef struct cuda_ctx {
     double dp;            /* particle spacing (m): the shifting displacement is kept within 0.1 dp */
     int failed;           /* 1 after a CUDA failure (already printed): every operation then gives up */
     char name[300];       /* "cuda(DEVICE NAME)" for the module list */
-    size_t cap;           /* particles the device arrays have room for (the count at open) */
+    size_t cap;           /* particles the device arrays have room for (grown by append) */
     size_t nbodies;       /* the store's bodies (entries of dmv and dbody) */
 
     vres_domain dev;      /* the particles: every field of field.h's table in a device array (n, cap unused) */
@@ -63,12 +70,14 @@ typedef struct cuda_ctx {
 
     vres_cells hc;        /* host mirror of the cells: geometry from vres_cells_init, device begin/perm */
     vres_cells *dcells;   /* device copy of hc, which the kernels read */
-    size_t sorted_n;      /* particles of the last sort, (size_t)-1 when an upload made the cells stale */
+    size_t sorted_n;      /* particles of the last sort, (size_t)-1 when a removal or append made the cells stale */
     int key_bits;         /* bits of a cell key (keys are 0..ncells): the radix sort's end bit */
     unsigned *key;        /* [n] cell of each particle (ncells when outside the box) */
     unsigned *key_sorted; /* [n] the keys in sorted order */
     size_t *slot;         /* [n] 0, 1, ... n-1: the values the sort permutes */
     void *scratch[5];     /* [n * scratch_size[k]] gather targets, swapped with the arrays gathered */
+    uint8_t *mark;        /* [n] the marks remove reads (marks, mark_out) */
+    uint8_t *flag;        /* [n] work flags: the particles remove keeps, or those count counts */
     void *temp;           /* CUB's temporary storage */
     size_t temp_bytes;    /* its size (bytes) */
 
@@ -81,6 +90,8 @@ typedef struct cuda_ctx {
 
     vres_interact_fn interact;             /* 3D variant without shifting sums */
     vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
+    vres_work work[CUDA_NWORK]; /* the per-particle arrays above (but dev's) that exist, with how each follows */
+    int nwork;                  /* entries of work */
 } cuda_ctx;
 
 /* Check a CUDA result: 1 on success; otherwise print "CUDA: what: message" (only the first
@@ -113,6 +124,12 @@ template <typename T> static int alloc_copy(cuda_ctx *x, T **p, const T *src, si
 {
     return alloc(x, p, n * w * sizeof(T), what) &&
            ok(x, cudaMemcpy(*p, src, n * w * sizeof(T), cudaMemcpyHostToDevice), what);
+}
+
+/* Free one device array (a failure is reported like any other, once). */
+static void release(cuda_ctx *x, void *p)
+{
+    if (p) ok(x, cudaFree(p), "free device memory");
 }
 
 /* Make CUB's temporary storage at least bytes long. 1 or 0. */
@@ -184,6 +201,27 @@ VRES_PARTICLE_LOOP(check, check_one,
                    (const vres_cells *g, const double *pos, const float *vel, const float *rho, const uint8_t *type,
                     int check_rho, double rmin, double rmax, unsigned long long *res),
                    (g, pos, vel, rho, type, check_rho, rmin, rmax, res))
+
+/* Compaction's flags of particle i: keep[i] = 1 when mark[i] is 0 (it stays), else 0. */
+VRES_HD static inline void keep_one(size_t i, const uint8_t *mark, uint8_t *keep)
+{
+    keep[i] = mark[i] == 0;
+}
+VRES_PARTICLE_LOOP(keep, keep_one, (const uint8_t *mark, uint8_t *keep), (mark, keep))
+
+/* flag[i] = 1 when particle i has type t (for counting), else 0. */
+VRES_HD static inline void is_type_one(size_t i, const uint8_t *type, int t, uint8_t *flag)
+{
+    flag[i] = type[i] == t;
+}
+VRES_PARTICLE_LOOP(is_type, is_type_one, (const uint8_t *type, int t, uint8_t *flag), (type, t, flag))
+
+/* slot[i] = i: the indices compaction selects from. */
+VRES_HD static inline void iota_one(size_t i, size_t *slot)
+{
+    slot[i] = i;
+}
+VRES_PARTICLE_LOOP(iota, iota_one, (size_t *slot), (slot))
 
 /* The neighbours b != a of particle a within 2h (r2max = 4h^2) into cnt[a] (the CPU's count_pairs). */
 VRES_HD static inline void pairs_one(size_t a, const vres_cells *g, const double *pos, double r2max,
@@ -474,35 +512,177 @@ static int cu_download(vres_backend *b, vres_domain *d)
     return 0;
 }
 
-/* Take the (compacted) domain back: every array, the moving walls' reference, and Verlet's
- * previous step restarting from the current state. The cells are stale until the next sort. */
-static int cu_upload(vres_backend *b, const vres_domain *d, const double *xref)
+/* The sum of the n flags (device bytes) as a count, by CUB's reduction (accumulated in 64 bits);
+ * (size_t)-1 after a failure. */
+static size_t sum_flags(cuda_ctx *x, const uint8_t *flag, size_t n, const char *what)
+{
+    unsigned long long total = 0;
+    size_t bytes = 0;
+    if (!n) return 0;
+    if (!ok(x, cub::DeviceReduce::Sum(NULL, bytes, flag, x->dres, (int)n), what) || !grow_temp(x, bytes) ||
+        !ok(x, cub::DeviceReduce::Sum(x->temp, bytes, flag, x->dres, (int)n), what) ||
+        !ok(x, cudaMemcpy(&total, x->dres, sizeof total, cudaMemcpyDeviceToHost), what))
+        return (size_t)-1;
+    return (size_t)total;
+}
+
+/* How many particles of type t. */
+static size_t cu_count(vres_backend *b, int t)
 {
     cuda_ctx *x = ctx_of(b);
-    size_t n = d->n;
-    const char *what = "copy the particles to the device";
+    if (x->failed) return 0;
+    is_type_cuda(b->n, x->dev.type, t, x->flag);
+    if (!launched(x, "count by type")) return 0;
+    size_t k = sum_flags(x, x->flag, b->n, "count by type");
+    return k == (size_t)-1 ? 0 : k;
+}
+
+/* The marks array (device memory). */
+static uint8_t *cu_marks(vres_backend *b)
+{
+    return ctx_of(b)->mark;
+}
+
+/* Mark the particles outside the cells' box. */
+static size_t cu_mark_out(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed) return 0;
+    vres_cells_mark_out_cuda(b->n, x->dcells, x->dev.pos, x->mark);
+    if (!launched(x, "mark the particles out of the box")) return 0;
+    size_t k = sum_flags(x, x->mark, b->n, "count the marks");
+    return k == (size_t)-1 ? 0 : k;
+}
+
+/* The slots whose flag (n device bytes) is set, in order, into hc.perm (CUB's DeviceSelect over
+ * the indices 0..n-1, no host copy but the count): how many, or (size_t)-1 after a failure. */
+static size_t select_slots(cuda_ctx *x, const uint8_t *flag, size_t n, const char *what)
+{
+    unsigned long long k = 0;
+    size_t bytes = 0;
+    if (!n) return 0;
+    iota_cuda(n, x->slot);
+    if (!launched(x, what) ||
+        !ok(x, cub::DeviceSelect::Flagged(NULL, bytes, x->slot, flag, x->hc.perm, x->dres, (int64_t)n), what) ||
+        !grow_temp(x, bytes) ||
+        !ok(x, cub::DeviceSelect::Flagged(x->temp, bytes, x->slot, flag, x->hc.perm, x->dres, (int64_t)n), what) ||
+        !ok(x, cudaMemcpy(&k, x->dres, sizeof k, cudaMemcpyDeviceToHost), what))
+        return (size_t)-1;
+    x->sorted_n = (size_t)-1; /* hc.perm is the sort's no more */
+    return (size_t)k;
+}
+
+/* The marked particles (every field, in slot order) into the host domain out: selected and
+ * gathered on the device, then only they are copied. */
+static int cu_get_marked(vres_backend *b, const uint8_t *mark, vres_domain *out)
+{
+    cuda_ctx *x = ctx_of(b);
+    const char *what = "copy the marked particles to the host";
     if (x->failed) return -1;
-    if (n > x->cap) {
-        vres_error("cuda backend: upload of %zu particles, more than the %zu it has room for", n, x->cap);
-        return -1;
+    size_t k = select_slots(x, mark, b->n, what);
+    if (k == (size_t)-1) return -1;
+    vres_domain_reserve(out, k);
+    out->n = k;
+    unsigned blocks = (unsigned)((k + 255) / 256);
+    for (int f = 0; f < VRES_NFIELDS && k; f++) { /* gathered into the scratch of its size, which is free now */
+        const vres_field *fd = &vres_fields[f];
+        size_t c = 0;
+        while (scratch_size[c] != fd->elem) c++;
+        gather_kernel<uint8_t><<<blocks, 256>>>(k, fd->elem, x->hc.perm, (const uint8_t *)vres_field_array(&x->dev, fd),
+                                                (uint8_t *)x->scratch[c]);
+        if (!launched(x, what) ||
+            !ok(x, cudaMemcpy(vres_field_array(out, fd), x->scratch[c], k * fd->elem, cudaMemcpyDeviceToHost), what))
+            return -1;
     }
-    if (!copy_fields(x, &x->dev, d, n, 0, cudaMemcpyHostToDevice, what) ||
-        (x->xref && xref && !ok(x, cudaMemcpy(x->xref, xref, 3 * n * sizeof *xref, cudaMemcpyHostToDevice), what)) ||
-        (x->velm1 && !ok(x, cudaMemcpy(x->velm1, d->vel, 3 * n * sizeof *d->vel, cudaMemcpyHostToDevice), what)) ||
-        (x->rhom1 && !ok(x, cudaMemcpy(x->rhom1, d->rho, n * sizeof *d->rho, cudaMemcpyHostToDevice), what)) ||
-        (x->mvel && !ok(x, cudaMemset(x->mvel, 0, 3 * n * sizeof *x->mvel), what)))
-        return -1;
-    b->n = n;
-    x->sorted_n = (size_t)-1;
     return 0;
 }
 
-/* The moving walls' reference positions in slot order. */
-static void cu_get_xref(vres_backend *b, double *xref)
+/* Drop the marked particles: the kept slots selected (in order) on the device, then every field
+ * and every carried array gathered by them. */
+static int cu_remove(vres_backend *b, const uint8_t *mark)
 {
     cuda_ctx *x = ctx_of(b);
-    if (x->failed || !x->xref) return;
-    ok(x, cudaMemcpy(xref, x->xref, 3 * b->n * sizeof *xref, cudaMemcpyDeviceToHost), "copy the walls' reference");
+    const char *what = "remove the marked particles";
+    if (x->failed) return -1;
+    keep_cuda(b->n, mark, x->flag);
+    if (!launched(x, what)) return -1;
+    size_t k = select_slots(x, x->flag, b->n, what);
+    if (k == (size_t)-1) return -1;
+    if (k == b->n) return 0;
+    for (int f = 0; f < VRES_NFIELDS; f++)
+        gather_bytes(x, k, vres_field_slot(&x->dev, &vres_fields[f]), vres_fields[f].elem, x->hc.perm);
+    for (int w = 0; w < x->nwork; w++)
+        if (x->work[w].follow != VRES_WORK_SCRATCH) gather_bytes(x, k, x->work[w].p, x->work[w].elem, x->hc.perm);
+    if (x->failed) return -1;
+    b->n = k;
+    return 0;
+}
+
+/* Give work array w's entries [i0, i1) the values they start with: field w->from's, or zero. */
+static int work_init(cuda_ctx *x, const vres_work *w, size_t i0, size_t i1)
+{
+    const char *what = "initialise the work arrays";
+    if (i1 <= i0) return 1;
+    char *to = (char *)*w->p + i0 * w->elem;
+    if (w->from < 0) return ok(x, cudaMemset(to, 0, (i1 - i0) * w->elem), what);
+    const char *from = (const char *)vres_field_array(&x->dev, &vres_fields[w->from]) + i0 * w->elem;
+    return ok(x, cudaMemcpy(to, from, (i1 - i0) * w->elem, cudaMemcpyDeviceToDevice), what);
+}
+
+/* Move device array *p (n of its elem-byte particles kept when keep) into a new one of cap. 1 or 0. */
+static int regrow(cuda_ctx *x, void **p, size_t elem, size_t n, size_t cap, int keep)
+{
+    void *q = NULL;
+    const char *what = "grow the device arrays";
+    if (!*p) return 1;
+    if (!alloc(x, &q, cap * elem, what) ||
+        (keep && n && !ok(x, cudaMemcpy(q, *p, n * elem, cudaMemcpyDeviceToDevice), what)))
+        return 0;
+    release(x, *p);
+    *p = q;
+    return 1;
+}
+
+/* Room for at least n particles in every per-particle array: grown by half again (with a
+ * minimum), so that appending a few particles each step rarely reallocates. 1 or 0. */
+static int cu_grow(cuda_ctx *x, size_t nkeep, size_t n)
+{
+    if (n <= x->cap) return 1;
+    size_t cap = x->cap + x->cap / 2 + 64;
+    if (cap < n) cap = n;
+    if (cap > (size_t)INT_MAX) cap = n;
+    if (n > (size_t)INT_MAX) {
+        vres_error("CUDA: %zu particles: the CUDA backend holds at most %d", n, INT_MAX);
+        x->failed = 1;
+        return 0;
+    }
+    for (int f = 0; f < VRES_NFIELDS; f++)
+        if (!regrow(x, vres_field_slot(&x->dev, &vres_fields[f]), vres_fields[f].elem, nkeep, cap, 1)) return 0;
+    for (int w = 0; w < x->nwork; w++)
+        if (!regrow(x, x->work[w].p, x->work[w].elem, nkeep, cap, x->work[w].follow != VRES_WORK_SCRATCH)) return 0;
+    x->cap = cap;
+    return 1;
+}
+
+/* Add the particles of src after the others: their fields copied to the device, the carried
+ * arrays started from them. */
+static int cu_append(vres_backend *b, const vres_domain *src)
+{
+    cuda_ctx *x = ctx_of(b);
+    const char *what = "append particles";
+    size_t n0 = b->n, n1 = n0 + src->n;
+    if (x->failed || !cu_grow(x, n0, n1)) return -1;
+    for (int f = 0; f < VRES_NFIELDS && src->n; f++) {
+        const vres_field *fd = &vres_fields[f];
+        if (!ok(x, cudaMemcpy((char *)vres_field_array(&x->dev, fd) + n0 * fd->elem, vres_field_array(src, fd),
+                              src->n * fd->elem, cudaMemcpyHostToDevice), what))
+            return -1;
+    }
+    for (int w = 0; w < x->nwork; w++)
+        if (x->work[w].follow != VRES_WORK_SCRATCH && !work_init(x, &x->work[w], n0, n1)) return -1;
+    b->n = n1;
+    x->sorted_n = (size_t)-1;
+    return 0;
 }
 
 /* Ordered pairs within 2h (cells as of the last sort; positions now); 0 when the cells are stale. */
@@ -521,76 +701,79 @@ static size_t cu_count_pairs(vres_backend *b)
     return (size_t)total;
 }
 
-/* Free one device array (a failure is reported like any other, once). */
-static void release(cuda_ctx *x, void *p)
-{
-    if (p) ok(x, cudaFree(p), "free device memory");
-}
-
 /* Free every device array and the context. */
 static void cu_close(vres_backend *b)
 {
     cuda_ctx *x = ctx_of(b);
     if (!x) return;
-    for (int k = 0; k < VRES_NFIELDS; k++) {
-        release(x, vres_field_array(&x->dev, &vres_fields[k]));
-        release(x, vres_field_array(&x->start, &vres_fields[k]));
-    }
-    void *arrays[] = {x->ace, x->ar, x->visc, x->shiftv, x->velm1, x->rhom1, x->xref, x->mvel, x->x2d,
-                      x->v2d, x->inv_rho, x->hc.begin, x->hc.perm, x->dcells, x->key, x->key_sorted, x->slot,
-                      x->scratch[0], x->scratch[1], x->scratch[2], x->scratch[3], x->scratch[4], x->temp, x->dC,
-                      x->dP, x->dred, x->dres, x->dmv, x->dbody};
+    for (int k = 0; k < VRES_NFIELDS; k++) release(x, vres_field_array(&x->dev, &vres_fields[k]));
+    for (int k = 0; k < x->nwork; k++) release(x, *x->work[k].p);
+    void *arrays[] = {x->hc.begin, x->dcells, x->temp, x->dC, x->dP, x->dred, x->dres, x->dmv, x->dbody};
     for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) release(x, arrays[k]);
     free(x);
     b->ctx = NULL;
 }
 
+/* Add the device array *p (elem bytes per particle, following the particles as follow says,
+ * starting from field `from`'s values or zero) to the work list of x. */
+static void add_work(cuda_ctx *x, void *p, size_t elem, int follow, int from)
+{
+    vres_work w = {(void **)p, elem, follow, from};
+    x->work[x->nwork++] = w;
+}
+
+/* The list of the per-particle device arrays the scene needs (but the fields'): the step start,
+ * the rates, the scene's optional arrays, the sort's and the compaction's. */
+static void cu_work_list(cuda_ctx *x)
+{
+    const run_cfg *c = &x->c;
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (vres_fields[k].state)
+            add_work(x, vres_field_slot(&x->start, &vres_fields[k]), vres_fields[k].elem, VRES_WORK_START, k);
+    add_work(x, &x->ace, 3 * sizeof *x->ace, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->ar, sizeof *x->ar, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->visc, sizeof *x->visc, VRES_WORK_SCRATCH, -1);
+    if (c->shift) add_work(x, &x->shiftv, 4 * sizeof *x->shiftv, VRES_WORK_SCRATCH, -1);
+    if (c->dim == 2) { /* split by axis: x2d holds n x then n z values, so 2 per particle */
+        add_work(x, &x->x2d, 2 * sizeof *x->x2d, VRES_WORK_SCRATCH, -1);
+        add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);
+        add_work(x, &x->inv_rho, sizeof *x->inv_rho, VRES_WORK_SCRATCH, -1);
+    }
+    /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
+    if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
+    if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
+    if (c->nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
+    for (int k = 0; k < 5; k++) add_work(x, &x->scratch[k], scratch_size[k], VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->key, sizeof *x->key, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->key_sorted, sizeof *x->key_sorted, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->slot, sizeof *x->slot, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->hc.perm, sizeof *x->hc.perm, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->mark, sizeof *x->mark, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->flag, sizeof *x->flag, VRES_WORK_SCRATCH, -1);
+}
+
 /* Allocate and fill every device array for domain d of store s. 1, or 0 after printing why. */
 static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
 {
-    const run_cfg *c = &x->c;
     size_t n = d->n;
     const char *what = "upload the particles";
-    for (int k = 0; k < VRES_NFIELDS; k++) { /* every field, and the state fields' step-start copies */
-        const vres_field *f = &vres_fields[k];
-        if (!alloc(x, vres_field_slot(&x->dev, f), n * f->elem, what) ||
-            (f->state && !alloc(x, vres_field_slot(&x->start, f), n * f->elem, what)))
-            return 0;
-    }
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (!alloc(x, vres_field_slot(&x->dev, &vres_fields[k]), x->cap * vres_fields[k].elem, what)) return 0;
     if (!copy_fields(x, &x->dev, d, n, 0, cudaMemcpyHostToDevice, what)) return 0;
     what = "allocate the work arrays";
-    if (!alloc(x, &x->ace, 3 * n * sizeof *x->ace, what) ||
-        !alloc(x, &x->ar, n * sizeof *x->ar, what) || !alloc(x, &x->visc, n * sizeof *x->visc, what) ||
-        !ok(x, cudaMemset(x->ace, 0, 3 * n * sizeof *x->ace), what) ||
-        !ok(x, cudaMemset(x->ar, 0, n * sizeof *x->ar), what) ||
-        !ok(x, cudaMemset(x->visc, 0, n * sizeof *x->visc), what))
-        return 0;
-    if (c->shift && !(alloc(x, &x->shiftv, 4 * n * sizeof *x->shiftv, what) &&
-                      ok(x, cudaMemset(x->shiftv, 0, 4 * n * sizeof *x->shiftv), what)))
-        return 0;
-    if (c->dim == 2 && !(alloc(x, &x->x2d, 2 * n * sizeof *x->x2d, what) &&
-                         alloc(x, &x->v2d, 2 * n * sizeof *x->v2d, what) &&
-                         alloc(x, &x->inv_rho, n * sizeof *x->inv_rho, what)))
-        return 0;
-    if (c->mdbc && c->slip >= 2 && !(alloc(x, &x->mvel, 3 * n * sizeof *x->mvel, what) &&
-                                     ok(x, cudaMemset(x->mvel, 0, 3 * n * sizeof *x->mvel), what)))
-        return 0;
-    /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
-    if (c->verlet && !(alloc_copy(x, &x->velm1, d->vel, n, 3, what) && alloc_copy(x, &x->rhom1, d->rho, n, 1, what)))
-        return 0;
-    if (c->nmoving) {
+    cu_work_list(x);
+    for (int k = 0; k < x->nwork; k++)
+        if (!alloc(x, x->work[k].p, x->cap * x->work[k].elem, what) || !work_init(x, &x->work[k], 0, n)) return 0;
+    if (x->c.nmoving) {
         vres_wall_body *wb = vres_wall_bodies(s);
-        int good = alloc_copy(x, &x->xref, d->pos, n, 3, what) && alloc_copy(x, &x->dbody, wb, s->nbodies, 1, what) &&
+        int good = alloc_copy(x, &x->dbody, wb, s->nbodies, 1, what) &&
                    alloc(x, &x->dmv, s->nbodies * sizeof *x->dmv, what);
         free(wb);
         if (!good) return 0;
     }
     what = "allocate the cells";
-    for (int k = 0; k < 5; k++)
-        if (!alloc(x, &x->scratch[k], n * scratch_size[k], what)) return 0;
-    if (!alloc(x, &x->key, n * sizeof *x->key, what) || !alloc(x, &x->key_sorted, n * sizeof *x->key_sorted, what) ||
-        !alloc(x, &x->slot, n * sizeof *x->slot, what) || !alloc(x, &x->hc.perm, n * sizeof *x->hc.perm, what) ||
-        !alloc(x, &x->hc.begin, (x->hc.ncells + 2) * sizeof *x->hc.begin, what) ||
+    if (!alloc(x, &x->hc.begin, (x->hc.ncells + 2) * sizeof *x->hc.begin, what) ||
         !ok(x, cudaMemset(x->hc.begin, 0, (x->hc.ncells + 2) * sizeof *x->hc.begin), what) ||
         !alloc_copy(x, &x->dcells, &x->hc, 1, 1, what))
         return 0;
@@ -658,8 +841,12 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
     b->mdbc = cu_mdbc;
     b->check = cu_check;
     b->download = cu_download;
-    b->upload = cu_upload;
-    b->get_xref = cu_get_xref;
+    b->count = cu_count;
+    b->marks = cu_marks;
+    b->mark_out = cu_mark_out;
+    b->get_marked = cu_get_marked;
+    b->remove = cu_remove;
+    b->append = cu_append;
     b->count_pairs = cu_count_pairs;
     b->close = cu_close;
     return 0;

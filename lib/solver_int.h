@@ -7,6 +7,7 @@
 #define VRES_SOLVER_INT_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
@@ -60,6 +61,21 @@ typedef struct run_cfg {
  * Between open and close the backend owns the particle state: the host copy in the store is
  * current only after download. Slots are the backend's cell order; the store's arrays follow
  * it on download (ids travel with the particles). Every call but open acts on b->ctx. */
+
+/* How one of a backend's own per-particle arrays (beside the domain's fields) follows its
+ * particles (vres_work). */
+#define VRES_WORK_SCRATCH 0 /* recomputed before each use: only its room follows the count */
+#define VRES_WORK_START 1   /* a field's value at the step's start: follows the mid-step sort, removal, append */
+#define VRES_WORK_CARRY 2   /* state kept across steps: follows every sort, removal and append */
+
+/* One of a backend's own per-particle arrays, in the list that its growth, sorts, removal and
+ * append walk (as they walk field.h's table for the domain's fields). */
+typedef struct vres_work {
+    void **p;             /* where the backend keeps the array's pointer (swapped by gathers, moved by growth) */
+    size_t elem;          /* bytes per particle */
+    int follow;           /* VRES_WORK_* */
+    int from;             /* the field (VRES_FIELD_*) whose value a particle's entry starts from; -1: zero */
+} vres_work;
 typedef struct vres_backend {
     const char *name;     /* what the module list prints: "cpu-openmp(2 threads)", "cuda(NAME)" */
     void *ctx;            /* the backend's own state */
@@ -95,18 +111,33 @@ typedef struct vres_backend {
      * fluid density outside RhopOutMin..RhopOutMax), (size_t)-1 when none; *nout gets the
      * number of particles with a finite state outside the cells' box (left the domain). */
     size_t (*check)(struct vres_backend *b, size_t *nout);
-    /* Copy the particle state into the domain d (positions, velocities, densities and the
-     * order-carrying arrays: id, type, mk, mass, normal); d->n becomes b->n. 0 or -1. */
+    /* Copy the particle state (every field of field.h's table) into the domain d, which the
+     * backend was opened with (its arrays have room: the backend grows them); d->n becomes
+     * b->n. 0 or -1. */
     int (*download)(struct vres_backend *b, vres_domain *d);
-    /* Take the domain d back after the host changed it (particles removed: n may be smaller;
-     * the moving walls' reference positions xref[3 d->n] in d's order, NULL without moving
-     * walls). Verlet's previous-step velocities and densities restart from d's (the time loop
-     * makes the next step an Euler step, which does not read them); the walls' motion velocities
-     * restart from zero (the time loop places the moving walls again). 0 or -1. */
-    int (*upload)(struct vres_backend *b, const vres_domain *d, const double *xref);
-    /* The moving walls' reference positions (m) in the current slot order into xref[3n]
-     * (for the host's compaction). Nothing without moving walls. */
-    void (*get_xref)(struct vres_backend *b, double *xref);
+    /* How many particles of type t (kernels/ptype.h) the backend holds now. */
+    size_t (*count)(struct vres_backend *b, int t);
+    /* The backend's per-particle marks: an array of b->n bytes in its own memory space (device
+     * memory on CUDA) that mark_out or a caller's kernels fill and remove reads; valid until the
+     * next remove or append. */
+    uint8_t *(*marks)(struct vres_backend *b);
+    /* Set the marks to 1 for the particles outside the cells' box (they left the domain), 0
+     * for the others; returns how many are marked. */
+    size_t (*mark_out)(struct vres_backend *b);
+    /* Copy the particles whose mark (n bytes in the backend's memory) is set, every field, in
+     * slot order, into the host domain out (reserved as needed; out->n = how many). 0 or -1. */
+    int (*get_marked)(struct vres_backend *b, const uint8_t *mark, vres_domain *out);
+    /* Drop the particles whose mark (n bytes in the backend's memory; 1: drop) is set, in the
+     * backend's own memory: the others keep their order and all their state (every field, the
+     * step start, the moving walls' reference, Verlet's previous step, the walls' own velocity).
+     * The cells are stale until the next sort. 0, or -1 after printing why. */
+    int (*remove)(struct vres_backend *b, const uint8_t *mark);
+    /* Add the src->n particles of the host domain src after the others (every field), growing
+     * the room geometrically (so appending a few particles a step reallocates rarely). Their
+     * step start is their state, their moving-wall reference their position, their Verlet
+     * previous step their velocity and density, their walls' own velocity zero. The cells are
+     * stale until the next sort. 0, or -1 after printing why. */
+    int (*append)(struct vres_backend *b, const vres_domain *src);
     /* Ordered neighbour pairs (a, b != a) within 2h now (for the interactions-per-second figure). */
     size_t (*count_pairs)(struct vres_backend *b);
     /* Free everything the backend holds (b itself is the caller's). */

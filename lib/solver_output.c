@@ -192,62 +192,67 @@ int vres_run_stop_unstable(vres_store *s, vres_backend *b, const run_cfg *c, con
     if (b->download(b, d) != 0) return VRES_RUN_FAIL;
     return write_last_good(s, c, r, dir, t0, step0);
 }
-/* Remove the fluid particles that left the simulation domain (finite state, outside the cells'
- * box), each recorded in RUNDIR/excluded.tsv with the time, step and reason. A wall outside
- * the box is not removed: returns its slot (the run must stop). Returns (size_t)-1 when done,
- * (size_t)-2 after printing why the record could not be written. */
-static size_t exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
-                          long step)
+/* Open RUNDIR/excluded.tsv for appending (after a restart's earlier lines), with its header
+ * when new. 0, or -1 after printing why. */
+static int open_excluded(run_files *f)
 {
-    vres_domain *d = &s->dom[0];
-    if (b->download(b, d) != 0) return (size_t)-2;
-    for (size_t i = 0; i < d->n; i++) /* a wall outside stops the run: find it before changing anything */
-        if (!vres_type_acts_fluid(d->type[i]) && !vres_run_in_box(c, &d->pos[3 * i])) return i;
-    if (!f->excl) { /* appended to, after a restart's earlier lines */
-        char *path = vres_xasprintf("%s/excluded.tsv", f->dir);
-        f->excl = fopen(path, "a");
-        if (!f->excl) vres_error("%s: cannot write: %s", path, strerror(errno));
-        free(path);
-        if (!f->excl) return (size_t)-2;
-        if (fseek(f->excl, 0, SEEK_END) == 0 && ftell(f->excl) == 0)
-            fprintf(f->excl, "# time_s\tstep\tid\ttype\tmk\tx_m\ty_m\tz_m\tvx_m_s\tvy_m_s\tvz_m_s\trho_kg_m3\treason\n");
+    if (f->excl) return 0;
+    char *path = vres_xasprintf("%s/excluded.tsv", f->dir);
+    f->excl = fopen(path, "a");
+    if (!f->excl) vres_error("%s: cannot write: %s", path, strerror(errno));
+    free(path);
+    if (!f->excl) return -1;
+    if (fseek(f->excl, 0, SEEK_END) == 0 && ftell(f->excl) == 0)
+        fprintf(f->excl, "# time_s\tstep\tid\ttype\tmk\tx_m\ty_m\tz_m\tvx_m_s\tvy_m_s\tvz_m_s\trho_kg_m3\treason\n");
+    return 0;
+}
+
+/* Remove the fluid particles that left the simulation domain (finite state, outside the cells'
+ * box) from the backend (in its own memory), each recorded in RUNDIR/excluded.tsv with the
+ * time, step and reason. A wall outside the box is not removed: the run stops, its diagnosis
+ * printed and the step-start state (step0 at t0) written as the last good one. Returns
+ * VRES_RUN_OK, or the run's exit status after printing why. */
+static int exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+                       long step, double t0, long step0)
+{
+    vres_domain out;
+    memset(&out, 0, sizeof out);
+    size_t nex = b->mark_out(b);
+    if (b->get_marked(b, b->marks(b), &out) != 0 || out.n != nex) {
+        vres_domain_free(&out);
+        return VRES_RUN_FAIL;
     }
-    double *xref = c->nmoving ? vres_xmalloc(3 * d->n * sizeof *xref) : NULL;
-    if (xref) b->get_xref(b, xref);
-    size_t k = 0, nex = 0;
-    char ids[96] = "";
-    for (size_t i = 0; i < d->n; i++) {
-        if (vres_run_in_box(c, &d->pos[3 * i])) {
-            if (k != i) {
-                vres_field_copy_particle(d, k, d, i);
-                if (xref) memcpy(&xref[3 * k], &xref[3 * i], 3 * sizeof *xref);
-            }
-            k++;
-            continue;
+    for (size_t i = 0; i < out.n; i++) /* a wall outside stops the run: find it before changing anything */
+        if (!vres_type_acts_fluid(out.type[i])) {
+            vres_run_diagnose(&out, c, i, step, t);
+            vres_domain_free(&out);
+            return vres_run_stop_unstable(s, b, c, r, f->dir, (size_t)-1, step, t, t0, step0);
         }
-        const double *x = &d->pos[3 * i];
-        const float *v = &d->vel[3 * i];
-        fprintf(f->excl, "%.9g\t%ld\t%llu\t%s\t%d\t%.9g\t%.9g\t%.9g\t%.6g\t%.6g\t%.6g\t%.7g\tleft the simulation domain\n",
-                t, step, (unsigned long long)d->id[i], vres_ptype_name(d->type[i]), d->mk[i], x[0], x[1], x[2], v[0],
-                v[1], v[2], d->rho[i]);
-        if (nex < 4) /* the first few ids for the message */
-            snprintf(ids + strlen(ids), sizeof ids - strlen(ids), "%s%llu", nex ? ", " : "",
-                     (unsigned long long)d->id[i]);
-        nex++;
+    if (open_excluded(f) != 0) {
+        vres_domain_free(&out);
+        return VRES_RUN_FAIL;
     }
-    d->n = k;
+    char ids[96] = "";
+    for (size_t i = 0; i < out.n; i++) {
+        const double *x = &out.pos[3 * i];
+        const float *v = &out.vel[3 * i];
+        fprintf(f->excl, "%.9g\t%ld\t%llu\t%s\t%d\t%.9g\t%.9g\t%.9g\t%.6g\t%.6g\t%.6g\t%.7g\tleft the simulation domain\n",
+                t, step, (unsigned long long)out.id[i], vres_ptype_name(out.type[i]), out.mk[i], x[0], x[1], x[2],
+                v[0], v[1], v[2], out.rho[i]);
+        if (i < 4) /* the first few ids for the message */
+            snprintf(ids + strlen(ids), sizeof ids - strlen(ids), "%s%llu", i ? ", " : "",
+                     (unsigned long long)out.id[i]);
+    }
+    vres_domain_free(&out);
     r->nexcluded += (double)nex;
     vres_info("t = %.6g s, step %ld: %zu fluid particle%s left the simulation domain and %s excluded (id %s%s; "
               "recorded in %s/excluded.tsv)", t, step, nex, nex == 1 ? "" : "s", nex == 1 ? "is" : "are", ids,
               nex > 4 ? ", ..." : "", f->dir);
     fflush(f->excl);
-    int bad = ferror(f->excl) || b->upload(b, d, xref) != 0;
-    free(xref);
-    if (bad) {
-        vres_error("%s/excluded.tsv: write failed", f->dir);
-        return (size_t)-2;
-    }
-    return (size_t)-1;
+    int bad = ferror(f->excl) != 0;
+    if (bad) vres_error("%s/excluded.tsv: write failed", f->dir);
+    if (b->remove(b, b->marks(b)) != 0) bad = 1;
+    return bad ? VRES_RUN_FAIL : VRES_RUN_OK;
 }
 
 /* After a step (or half step) that ended at time t: stop on a fatal particle, exclude the
@@ -257,19 +262,18 @@ int vres_run_after_step(vres_store *s, vres_backend *b, const run_cfg *c, run_re
                         long step, double t0, long step0)
 {
     size_t nout, bad = b->check(b, &nout);
-    if (bad == (size_t)-1 && nout) {
-        bad = exclude_out(s, b, c, r, f, t, step);
-        if (bad == (size_t)-2) return VRES_RUN_FAIL;
-        if (bad != (size_t)-1) return vres_run_stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
-        size_t nf = stats(&s->dom[0]).nfluid;
-        if (nf == 0 || (c->min_fluid > 0 && nf < c->min_fluid * r->nfluid0)) {
-            vres_error("unstable at step %ld, t = %.6g s: %zu fluid particles left, below MinFluidStop=%g of the %.0f "
-                       "at the start (%.0f excluded)", step, t, nf, c->min_fluid, r->nfluid0, r->nexcluded);
-            /* the state after the exclusions is sound: it is the last good one */
-            return write_last_good(s, c, r, f->dir, t, step);
-        }
-    }
     if (bad != (size_t)-1) return vres_run_stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
+    if (!nout) return VRES_RUN_OK;
+    int rc = exclude_out(s, b, c, r, f, t, step, t0, step0);
+    if (rc != VRES_RUN_OK) return rc;
+    size_t nf = b->count(b, VRES_FLUID);
+    if (nf == 0 || (c->min_fluid > 0 && nf < c->min_fluid * r->nfluid0)) {
+        vres_error("unstable at step %ld, t = %.6g s: %zu fluid particles left, below MinFluidStop=%g of the %.0f "
+                   "at the start (%.0f excluded)", step, t, nf, c->min_fluid, r->nfluid0, r->nexcluded);
+        /* the state after the exclusions is sound: it is the last good one */
+        if (b->download(b, &s->dom[0]) != 0) return VRES_RUN_FAIL;
+        return write_last_good(s, c, r, f->dir, t, step);
+    }
     return VRES_RUN_OK;
 }
 

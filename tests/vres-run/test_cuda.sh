@@ -3,7 +3,8 @@
 # (cudaGetDeviceCount fails, error 35 on these machines): --device cuda is one clear error, exit
 # 1, and no run directory is made; --device auto runs on the CPU and says so in one line. With a
 # GPU: --device cuda runs the tank on it, names it in the module list, and keeps the particles
-# (ids, fluid count and mass: no particle is lost or duplicated by the device's cell sort). A
+# (ids, fluid count and mass: no particle is lost or duplicated by the device's cell sort), and
+# excludes what leaves the domain on the device (each particle kept or excluded, once). A
 # build where nvcc was found has the CUDA backend in libvres: vres_backend_cuda_open defined by
 # solver_cuda.cu's object, once (solver.c's stub is compiled only without it).
 source "$(dirname "$0")/../harness.sh"
@@ -45,4 +46,14 @@ else
     check "--device cuda: fluid count and mass kept ($nf particles, $mf kg)" \
         awk -F'\t' -v n="$nf" -v m="$mf" '!/^#/ && ($4 != n || ($6 - m) ^ 2 > (1e-8 * m) ^ 2) {exit 1}' \
         "$T/gpu/run.tsv"
+    # the exclusion runs on the device (mark, select, gather with CUB): the upside-down tank
+    # throws its water out; every particle is then in the last snapshot or in excluded.tsv, once
+    "$BIN/vres-gencase" -q --dp 0.05 --set 'gravity=0,0,9.81' "$CASES/hydrostatic2d/hydrostatic2d_Def.xml" \
+        -o "$T/up.h5" || notok "gencase the upside-down tank"
+    expect 0 "--device cuda: the upside-down tank runs" "$RUN" --device cuda --tmax 0.4 --tout 0.1 "$T/up.h5" -o "$T/gup"
+    check "--device cuda: particles excluded" [ "$(grep -c -v '^#' "$T/gup/excluded.tsv")" -gt 10 ]
+    cat <(values /Domains/D0/Id "$T/gup/snap_00004.h5") <(grep -v '^#' "$T/gup/excluded.tsv" | cut -f3) |
+        sort -n >"$T/ids"
+    values /Domains/D0/Id "$T/up.h5" | sort -n >"$T/ids0"
+    check "--device cuda: each particle kept or excluded, once" cmp -s "$T/ids" "$T/ids0"
 fi
