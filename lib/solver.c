@@ -50,9 +50,135 @@ static void wall_motion(const vres_store *s, const vres_motion_state *mv0, doubl
     }
 }
 
-/* The time loop: Symplectic (or Verlet) steps on backend b from the store's time to c->tmax,
- * with outputs due at r->t0 + k tout, checkpoints every ckpt_s seconds of wall time. */
-static int time_loop(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double ckpt_s,
+/* ---- the phases of a step: one backend operation over every domain ---- */
+
+/* Sort every domain by cell (with carry, mid-step: the step start follows), then let the
+ * coupling interpolate the buffers from the donors' sorted fluid. 0, or -1 after printing why. */
+static int sort_all(run_set *set, const run_cfg *c, int carry, double t)
+{
+    for (size_t k = 0; k < set->n; k++)
+        if (set->b[k].sort(&set->b[k], carry) != 0) return -1;
+    return vres_couple_buffers(set, c, t);
+}
+
+/* Keep every domain's state as the step's start. */
+static void save_start_all(run_set *set)
+{
+    for (size_t k = 0; k < set->n; k++) set->b[k].save_start(&set->b[k]);
+}
+
+/* The forces in every domain (with the shifting sums when shift), each domain's own stable
+ * time step into set->dt (s): CFL * min(sqrt(h/|a|max), h/(c0 + h * viscous rate)). Returns
+ * the run's time step, the smallest of them; *kmin gets its domain, *amax and *visc its
+ * largest acceleration (m/s^2) and viscous rate (1/s), for the diagnosis of a collapse. */
+static double forces_all(run_set *set, const run_cfg *c, int shift, size_t *kmin, double *amax, double *visc)
+{
+    double dt = INFINITY;
+    for (size_t k = 0; k < set->n; k++) {
+        double vk, ak = set->b[k].forces(&set->b[k], shift, &vk), h = set->dom[k].h;
+        double dt1 = ak > 0 ? sqrt(h / ak) : INFINITY;
+        set->dt[k] = c->cfl * fmin(dt1, h / (c->cs0 + h * vk));
+        if (k == 0 || set->dt[k] < dt) dt = set->dt[k], *kmin = k, *amax = ak, *visc = vk;
+    }
+    return dt;
+}
+
+/* Place every domain's moving walls for the motions mv, then wrap the periodic axes. */
+static void walls_wrap_all(run_set *set, const vres_motion_state *mv)
+{
+    for (size_t k = 0; k < set->n; k++) set->b[k].move_walls(&set->b[k], mv);
+    for (size_t k = 0; k < set->n; k++) set->b[k].wrap(&set->b[k]);
+}
+
+/* mDBC wall densities (and slip velocities) in every domain for the state the step ends with. */
+static void mdbc_all(run_set *set)
+{
+    for (size_t k = 0; k < set->n; k++) set->b[k].mdbc(&set->b[k]);
+}
+
+/* The first fatal particle of any domain after the predictor: its slot, (size_t)-1 when none
+ * (*k its domain). */
+static size_t check_all(run_set *set, size_t *k)
+{
+    for (*k = 0; *k < set->n; (*k)++) {
+        size_t nout, bad = set->b[*k].check(&set->b[*k], &nout);
+        if (bad != (size_t)-1) return bad;
+    }
+    return (size_t)-1;
+}
+
+/* A time loop's moving bodies: their motion at the loop's start and their transforms now. */
+typedef struct run_motion {
+    vres_motion_state *mv0; /* [nbodies] each body's motion at the loop's start */
+    vres_motion_state *mv;  /* [nbodies] the transforms of the last wall_motion */
+} run_motion;
+
+/* One Symplectic step from time t (step `step`) of every domain, with the forces already
+ * evaluated at the step's start and dt from them: predictor, mid-step check and sort (and the
+ * coupling's interpolation), forces, corrector, mDBC, then the coupling's exchange. Returns
+ * VRES_RUN_OK, or the run's exit status after printing why. */
+static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, run_files *f,
+                           run_motion *m, double t, long step, double dt)
+{
+    double amax, visc;
+    size_t kmin, k;
+    for (k = 0; k < set->n; k++) set->b[k].predict(&set->b[k], dt);
+    wall_motion(s, m->mv0, t + 0.5 * dt, m->mv);
+    walls_wrap_all(set, m->mv);
+    size_t badmid = check_all(set, &k);
+    if (badmid != (size_t)-1)
+        return vres_run_stop_unstable(s, set, c, r, f->dir, k, badmid, step + 1, t + 0.5 * dt, t, step);
+    /* particles that left the domain in the predictor are sorted after every cell, where no
+       neighbour sees them; the corrector decides (they are excluded after the step) */
+    if (sort_all(set, c, 1, t + 0.5 * dt) != 0) return VRES_RUN_FAIL;
+    forces_all(set, c, c->shift != 0, &kmin, &amax, &visc);
+    for (k = 0; k < set->n; k++) set->b[k].correct(&set->b[k], dt, c->shift != 0);
+    wall_motion(s, m->mv0, t + dt, m->mv);
+    walls_wrap_all(set, m->mv);
+    /* mDBC wall densities follow the fluid, not the continuity equation: set them for the
+       state the step ends with (the cells of the predicted state still hold every neighbour
+       but those at the kernel's edge, where W vanishes) */
+    mdbc_all(set);
+    return vres_couple_exchange(set, c, t + dt, dt) != 0 ? VRES_RUN_FAIL : VRES_RUN_OK;
+}
+
+/* One Verlet step (an Euler step when euler) from time t of every domain, with the forces
+ * already evaluated: the step, the walls, mDBC, then the coupling's exchange. */
+static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, double dt, int euler)
+{
+    for (size_t k = 0; k < set->n; k++) set->b[k].verlet(&set->b[k], dt, euler, c->shift != 0);
+    wall_motion(s, m->mv0, t + dt, m->mv);
+    walls_wrap_all(set, m->mv);
+    mdbc_all(set);
+    return vres_couple_exchange(set, c, t + dt, dt) != 0 ? VRES_RUN_FAIL : VRES_RUN_OK;
+}
+
+/* Check the state the loop starts from: every domain's walls placed, sorted, no fatal particle
+ * and none outside its box. 0, or -1 after printing the diagnosis. */
+static int check_start(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, long step)
+{
+    wall_motion(s, m->mv0, t, m->mv);
+    for (size_t k = 0; k < set->n; k++) {
+        vres_backend *b = &set->b[k];
+        b->move_walls(b, m->mv); /* their velocity at the start, which the store may not hold */
+        b->sort(b, 0);
+        size_t nout, bad = b->check(b, &nout);
+        if (bad == (size_t)-1 && !nout) continue;
+        vres_domain *d = &s->dom[set->dom[k].index];
+        b->download(b, d);
+        for (size_t i = 0; bad == (size_t)-1 && i < d->n; i++)
+            if (!vres_run_in_box(c, &set->dom[k], &d->pos[3 * i])) bad = i;
+        vres_error("the store's initial state is already bad: nothing run");
+        vres_run_diagnose(d, c, &set->dom[k], bad, step, t);
+        return -1;
+    }
+    return 0;
+}
+
+/* The time loop: Symplectic (or Verlet) steps of every domain of set from the store's time to
+ * c->tmax, phase by phase over the domains, with one time step for all (the smallest of the
+ * domains'), outputs due at r->t0 + k tout, checkpoints every ckpt_s seconds of wall time. */
+static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, run_files *f, double ckpt_s,
                      int restarted)
 {
     double t = s->time, dt = 0;
@@ -61,86 +187,47 @@ static int time_loop(vres_store *s, vres_backend *b, const run_cfg *c, run_resum
     int verlet_count = restarted ? c->verlet_steps - 1 : 0;
     run_clock clk = {vres_run_wall_now(), vres_run_wall_now(), step, vres_run_wall_now()};
     int rc = VRES_RUN_OK, nsnap0 = r->next_snap;
-    vres_motion_state *mv0 = vres_xcalloc(s->nbodies + 1, sizeof *mv0);
-    vres_motion_state *mv = vres_xcalloc(s->nbodies + 1, sizeof *mv);
-    for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &mv0[k]);
-    wall_motion(s, mv0, t, mv);
-    b->move_walls(b, mv); /* their velocity at the start, which the store may not hold */
-    b->sort(b, 0);
-    size_t nout, bad = b->check(b, &nout);
-    if (bad != (size_t)-1 || nout) {
-        b->download(b, &s->dom[0]);
-        for (size_t i = 0; bad == (size_t)-1 && i < s->dom[0].n; i++)
-            if (!vres_run_in_box(c, &s->dom[0].pos[3 * i])) bad = i;
-        vres_error("the store's initial state is already bad: nothing run");
-        vres_run_diagnose(&s->dom[0], c, bad, step, t);
-        free(mv0);
-        free(mv);
-        return VRES_RUN_FAIL;
-    }
-    if (!restarted) {
+    run_motion m = {vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv)};
+    for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m.mv0[k]);
+    if (check_start(s, set, c, &m, t, step) != 0) rc = VRES_RUN_FAIL;
+    else if (!restarted) {
         r->next_due = 1;
-        if (vres_run_output(s, b, c, r, f, &clk, t, step, 0) != 0) rc = VRES_RUN_FAIL;
+        if (vres_run_output(s, set, c, r, f, &clk, t, step, 0) != 0) rc = VRES_RUN_FAIL;
     }
     while (rc == VRES_RUN_OK && t < c->tmax * (1 - 1e-12)) {
-        double visc;
-        if (b->sort(b, 0) != 0) { rc = VRES_RUN_FAIL; break; }
-        b->save_start(b);
-        double amax = b->forces(b, c->verlet && c->shift != 0, &visc);
-        double dt1 = amax > 0 ? sqrt(c->h / amax) : INFINITY;
-        dt = c->cfl * fmin(dt1, c->h / (c->cs0 + c->h * visc));
+        double amax, visc;
+        size_t kmin;
+        if (sort_all(set, c, 0, t) != 0) { rc = VRES_RUN_FAIL; break; }
+        save_start_all(set);
+        dt = forces_all(set, c, c->verlet && c->shift != 0, &kmin, &amax, &visc);
         if (!(dt >= c->dtmin)) {
             vres_error("unstable at step %ld, t = %.6g s: time step %g s below DtMin %g s (largest acceleration "
                        "%g m/s^2, viscous rate %g 1/s)", step + 1, t, dt, c->dtmin, amax, visc);
-            rc = vres_run_stop_unstable(s, b, c, r, f->dir, (size_t)-1, step, t, t, step);
+            rc = vres_run_stop_unstable(s, set, c, r, f->dir, kmin, (size_t)-1, step, t, t, step);
             break;
         }
         if (c->verlet) {
             int euler = ++verlet_count >= c->verlet_steps;
             if (euler) verlet_count = 0;
-            b->verlet(b, dt, euler, c->shift != 0);
-            wall_motion(s, mv0, t + dt, mv);
-            b->move_walls(b, mv);
-            b->wrap(b);
-            b->mdbc(b);
-        } else {
-            b->predict(b, dt);
-            wall_motion(s, mv0, t + 0.5 * dt, mv);
-            b->move_walls(b, mv);
-            b->wrap(b);
-            size_t nmid, badmid = b->check(b, &nmid);
-            if (badmid != (size_t)-1) {
-                rc = vres_run_stop_unstable(s, b, c, r, f->dir, badmid, step + 1, t + 0.5 * dt, t, step);
-                break;
-            }
-            /* particles that left the domain in the predictor are sorted after every cell, where
-               no neighbour sees them; the corrector decides (they are excluded after the step) */
-            if (b->sort(b, 1) != 0) { rc = VRES_RUN_FAIL; break; }
-            b->forces(b, c->shift != 0, &visc);
-            b->correct(b, dt, c->shift != 0);
-            wall_motion(s, mv0, t + dt, mv);
-            b->move_walls(b, mv);
-            b->wrap(b);
-            /* mDBC wall densities follow the fluid, not the continuity equation: set them for the
-               state the step ends with (the cells of the predicted state still hold every
-               neighbour but those at the kernel's edge, where W vanishes) */
-            b->mdbc(b);
-        }
+            rc = step_verlet(s, set, c, &m, t, dt, euler);
+        } else rc = step_symplectic(s, set, c, r, f, &m, t, step, dt);
+        if (rc != VRES_RUN_OK) break;
         double nex = r->nexcluded;
-        if ((rc = vres_run_after_step(s, b, c, r, f, t + dt, step + 1, t, step)) != VRES_RUN_OK) break;
+        if ((rc = vres_run_after_step(s, set, c, r, f, t + dt, step + 1, t, step)) != VRES_RUN_OK) break;
         if (r->nexcluded != nex) {
             if (c->verlet) verlet_count = c->verlet_steps - 1; /* the previous step is gone: Euler next */
-            b->move_walls(b, mv); /* placed again, as the runs did when exclusion went through the host */
+            for (size_t k = 0; k < set->n; k++) /* placed again, as when exclusion went through the host */
+                set->b[k].move_walls(&set->b[k], m.mv);
         }
         t += dt;
         step++;
         vres_run_progress(c, &clk, s->time, t, step, dt, 0);
         if (t >= (r->t0 + r->next_due * c->tout) * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12)) {
             while (r->t0 + r->next_due * c->tout <= t * (1 + 1e-9)) r->next_due++;
-            if (vres_run_output(s, b, c, r, f, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
+            if (vres_run_output(s, set, c, r, f, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
         }
         if (rc == VRES_RUN_OK && (stop_asked || (ckpt_s > 0 && vres_run_wall_now() - clk.last_ckpt >= ckpt_s))) {
-            if (vres_run_checkpoint(s, b, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+            if (vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
             else if (stop_asked) {
                 vres_error("interrupted at t = %.6g s, step %ld: state written to %s/checkpoint.h5; continue with "
                            "vres-run --restart %s/checkpoint.h5", t, step, f->dir, f->dir);
@@ -149,58 +236,103 @@ static int time_loop(vres_store *s, vres_backend *b, const run_cfg *c, run_resum
         }
     }
     vres_run_progress(c, &clk, s->time, t, step, dt, 1);
-    if (rc == VRES_RUN_OK && vres_run_checkpoint(s, b, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+    if (rc == VRES_RUN_OK && vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
     if (rc == VRES_RUN_OK)
         vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s%s", t, step - step_start,
                   vres_run_wall_now() - clk.start, r->next_snap - nsnap0, f->dir,
                   r->nexcluded > 0 ? " (particles excluded: see excluded.tsv)" : "");
-    free(mv0);
-    free(mv);
+    free(m.mv0);
+    free(m.mv);
     return rc;
 }
-
 
 #ifndef VRES_HAVE_CUDA_SOLVER
 /* A build without the CUDA backend (no nvcc): --device cuda is refused earlier by
  * vres_device_pick; this answers anything that gets here. */
-int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c)
+int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c,
+                           const run_dom *dc)
 {
-    (void)b, (void)s, (void)d, (void)c;
+    (void)b, (void)s, (void)d, (void)c, (void)dc;
     vres_error("this build has no CUDA solver (built without nvcc): use --device cpu");
     return -1;
 }
 #endif
 
+/* Open a backend on the device dev for every domain of set. 0, or -1 after printing why (the
+ * ones opened are closed again). */
+static int open_backends(vres_store *s, run_set *set, const run_cfg *c, vres_device dev)
+{
+    for (size_t k = 0; k < set->n; k++) {
+        vres_domain *d = &s->dom[set->dom[k].index];
+        int rc = dev == VRES_DEV_CUDA ? vres_backend_cuda_open(&set->b[k], s, d, c, &set->dom[k])
+                                      : vres_backend_cpu_open(&set->b[k], s, d, c, &set->dom[k]);
+        if (rc == 0) continue;
+        while (k-- > 0) set->b[k].close(&set->b[k]);
+        return -1;
+    }
+    return 0;
+}
+
+/* Free what set holds; with opened 1, close its backends first. */
+static void free_set(run_set *set, int opened)
+{
+    for (size_t k = 0; opened && k < set->n; k++) set->b[k].close(&set->b[k]);
+    free(set->dom);
+    free(set->b);
+    free(set->dt);
+    free(set->nout);
+    memset(set, 0, sizeof *set);
+}
+
+/* Say what the run holds: the particles of each domain, and the modules (also recorded in the
+ * store's parameters for every snapshot). */
+static void announce(vres_store *s, const run_set *set, const run_cfg *c, const vres_run_opts *o, vres_device dev)
+{
+    size_t nf = 0, nw = 0;
+    for (size_t k = 0; k < set->n; k++) nf += set->dom[k].nfluid, nw += set->dom[k].nwall;
+    char *mods = vres_run_modules(c, set, dev == VRES_DEV_CUDA ? set->b[0].name : NULL);
+    vres_info("%zu fluid + %zu wall particles, h %g m, c0 %g m/s, %s t = %g s to %g s, output every %g s", nf, nw,
+              set->dom[0].h, c->cs0, o->restart ? "restart from" : "from", s->time, c->tmax, c->tout);
+    for (size_t k = 0; set->n > 1 && k < set->n; k++)
+        vres_info("domain D%d: %zu fluid + %zu buffer + %zu wall particles, dp %g m, h %g m", set->dom[k].index,
+                  set->dom[k].nfluid, set->dom[k].nbuffer, set->dom[k].nwall, set->dom[k].dp, set->dom[k].h);
+    vres_info("modules: %s", mods);
+    vres_params_set_str(&s->params, "modules", mods, "run");
+    free(mods);
+}
+
 /* Check, pick the device, prepare the run directory and its table, then run the time loop. */
 int vres_solver_run(vres_store *s, const vres_run_opts *o)
 {
     run_cfg c;
+    run_set set;
     vres_device dev;
     run_resume r = {s->time, 1, 0, 0, 0};
-    if (vres_run_read_config(s, o, &c) != 0) return VRES_RUN_FAIL;
-    if (o->restart && vres_run_read_resume(s, &c, &r) != 0) return VRES_RUN_FAIL;
+    if (vres_run_read_config(s, o, &c, &set) != 0 || (o->restart && vres_run_read_resume(s, &c, &r) != 0)) {
+        free_set(&set, 0);
+        return VRES_RUN_FAIL;
+    }
     if (o->restart && fabs(vres_params_get(&s->params, "TimeOut", c.tout) - c.tout) > 1e-12 * c.tout) {
         vres_info("--tout %g differs from the run's TimeOut %g: outputs now every %g s from t = %g s", c.tout,
                   vres_params_get(&s->params, "TimeOut", c.tout), c.tout, s->time);
         r.t0 = s->time, r.next_due = 1;
     }
-    if (!o->restart) r.nfluid0 = (double)c.nfluid;
-    if (vres_device_pick(o->device ? o->device : "auto", &dev) != 0) return VRES_RUN_FAIL;
+    if (!o->restart)
+        for (size_t k = 0; k < set.n; k++) r.nfluid0 += (double)set.dom[k].nfluid;
+    if (vres_device_pick(o->device ? o->device : "auto", &dev) != 0) {
+        free_set(&set, 0);
+        return VRES_RUN_FAIL;
+    }
     if (o->threads > 0) omp_set_num_threads(o->threads);
     c.threads = omp_get_max_threads();
-    if (vres_run_prepare_dir(o->rundir, o->restart, s->step, r.next_snap) != 0) return VRES_RUN_FAIL;
-    vres_backend b;
-    vres_domain *d = &s->dom[0];
-    if ((dev == VRES_DEV_CUDA ? vres_backend_cuda_open(&b, s, d, &c) : vres_backend_cpu_open(&b, s, d, &c)) != 0)
+    if (vres_run_prepare_dir(o->rundir, o->restart, s->step, r.next_snap) != 0 ||
+        open_backends(s, &set, &c, dev) != 0) {
+        free_set(&set, 0);
         return VRES_RUN_FAIL;
-    char *mods = vres_run_modules(&c, dev == VRES_DEV_CUDA ? b.name : NULL);
-    vres_info("%zu fluid + %zu wall particles, h %g m, c0 %g m/s, %s t = %g s to %g s, output every %g s", c.nfluid,
-              c.nwall, c.h, c.cs0, o->restart ? "restart from" : "from", s->time, c.tmax, c.tout);
-    vres_info("modules: %s", mods);
-    vres_params_set_str(&s->params, "modules", mods, "run");
+    }
+    announce(s, &set, &c, o, dev);
     if (o->tmax > 0) vres_params_set1(&s->params, "TimeMax", c.tmax, "s", "set");
     if (o->tout > 0) vres_params_set1(&s->params, "TimeOut", c.tout, "s", "set");
-    free(mods);
     vres_store_add_history(s, o->cmdline ? o->cmdline : "vres-run");
 
     char *tsvpath = vres_xasprintf("%s/run.tsv", o->rundir);
@@ -209,7 +341,7 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     if (!f.tsv) {
         vres_error("%s: cannot write: %s", tsvpath, strerror(errno));
         free(tsvpath);
-        b.close(&b);
+        free_set(&set, 1);
         return VRES_RUN_FAIL;
     }
     if (fresh)
@@ -221,11 +353,12 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     sigaction(SIGINT, &sa, &old_int);
     sigaction(SIGTERM, &sa, &old_term);
     stop_asked = 0;
-    int rc = time_loop(s, &b, &c, &r, &f, o->checkpoint, o->restart);
+    int rc = time_loop(s, &set, &c, &r, &f, o->checkpoint, o->restart);
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
-    if (b.download(&b, d) != 0 && rc == VRES_RUN_OK) rc = VRES_RUN_FAIL;
-    b.close(&b);
+    for (size_t k = 0; k < set.n; k++)
+        if (set.b[k].download(&set.b[k], &s->dom[set.dom[k].index]) != 0 && rc == VRES_RUN_OK) rc = VRES_RUN_FAIL;
+    free_set(&set, 1);
     if (fclose(f.tsv) != 0 && rc == VRES_RUN_OK) {
         vres_error("%s: write failed", tsvpath);
         rc = VRES_RUN_FAIL;

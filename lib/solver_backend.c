@@ -7,16 +7,16 @@
 #include "log.h"
 #include "solver_int.h"
 
-vres_sph_consts vres_run_consts(const run_cfg *c)
+vres_sph_consts vres_run_consts(const run_cfg *c, const run_dom *dc)
 {
-    vres_sph_consts C = vres_sph_consts_make(c->dim, c->h, c->cs0);
+    vres_sph_consts C = vres_sph_consts_make(c->dim, dc->h, c->cs0);
     int lam = c->visco_kind == VRES_VISC_LAMINAR;
     C.alpha = lam ? 0 : c->visco;
     C.alpha_wall = lam ? 0 : c->visco * c->visco_bound;
     C.nu = lam ? c->visco : 0;
     C.nu_wall = lam ? c->visco * c->visco_bound : 0;
     C.shift_mode = c->shift;
-    C.ddt_khc = 2.0 * c->h * c->ddt_delta * c->cs0;
+    C.ddt_khc = 2.0 * dc->h * c->ddt_delta * c->cs0;
     C.rho0 = c->rho0;
     C.rho0_over_B = c->rho0 / c->B;
     C.inv_gamma = 1.0 / c->gamma;
@@ -32,8 +32,8 @@ vres_wall_body *vres_wall_bodies(const vres_store *s)
     return wb;
 }
 
-vres_sph_pick vres_run_pick(const run_cfg *c)
+vres_sph_pick vres_run_pick(const run_cfg *c, const run_dom *dc)
 {
-    vres_sph_pick p = {c->visco_kind, c->nwall > 0, c->ddt};
+    vres_sph_pick p = {c->visco_kind, dc->nwall > 0, c->ddt};
     return p;
 }

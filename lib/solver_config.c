@@ -2,6 +2,7 @@
  * solver uses, read and checked once into the run configuration (solver_int.h's run_cfg), with
  * each refusal named, and the module list printed at start and recorded in every snapshot. */
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,19 +51,21 @@ static void not_impl(int *bad, const char *name, double v, const char *what, con
     *bad = 1;
 }
 
-/* The periodic axes and the cells' box into c. An axis is periodic by the store's parameter
+/* The periodic axes and the cells' box of domain c. An axis is periodic by the store's parameter
  * periodic; its period is the simulation domain's length along it plus dp when that domain is
  * the particles' extent (origin auto: the lattice then repeats with its spacing across the
  * boundary, as DualSPHysics' map limits with periodic axes), and the domain's length when the
- * case fixed it. Shifted periodicity (XPeriodicIncZ...) is refused. 0, or -1 after printing why. */
-static int periodic_box(const vres_store *s, run_cfg *c)
+ * case fixed it. Shifted periodicity (XPeriodicIncZ...) is refused. Every domain has the
+ * simulation domain's box for now (a sub-domain's own, its region with its buffer band, comes
+ * with the coupling). 0, or -1 after printing why. */
+static int periodic_box(const vres_store *s, run_dom *c)
 {
     static const char *const inc_name[3] = {"periodic_xinc", "periodic_yinc", "periodic_zinc"};
     static const char axis[3] = {'x', 'y', 'z'};
     const vres_param *per = vres_params_find(&s->params, "periodic");
     const vres_param *dom = vres_params_find(&s->params, "domain_min");
     int fixed = dom && dom->origin && strcmp(dom->origin, "auto") != 0;
-    double half = fixed ? 0 : 0.5 * s->dom[0].dp;
+    double half = fixed ? 0 : 0.5 * c->dp;
     int bad = 0;
     for (int a = 0; a < 3; a++) {
         c->periodic[a] = per && per->n == 3 && per->v[a] != 0;
@@ -103,22 +106,123 @@ static int check_bodies(const vres_store *s)
         else if (b->kind != VRES_MOVING) vres_error("body mkbound %d of unknown kind %d", b->mkbound, b->kind), bad = 1;
         else if (vres_motion_check(b) != 0) bad = 1;
     }
-    const vres_domain *d = &s->dom[0];
-    for (size_t i = 0; i < d->n; i++)
-        if (vres_type_is_moving(d->type[i]) && body_of(s, d->mk[i]) < 0) {
-            vres_error("moving wall particle id %llu has mkbound %d, which no <motion> body moves",
-                       (unsigned long long)d->id[i], d->mk[i]);
-            return -1;
-        }
+    for (size_t k = 0; k < s->ndomains; k++) {
+        const vres_domain *d = &s->dom[k];
+        for (size_t i = 0; i < d->n; i++)
+            if (vres_type_is_moving(d->type[i]) && body_of(s, d->mk[i]) < 0) {
+                vres_error("moving wall particle id %llu has mkbound %d, which no <motion> body moves",
+                           (unsigned long long)d->id[i], d->mk[i]);
+                return -1;
+            }
+    }
     return bad ? -1 : 0;
 }
 
-/* Read and check every parameter of the store into c; 0, or -1 after printing each problem. */
-int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c)
+/* What the store's domain k holds into dc: resolution, nominal mass and counts by type, each
+ * type vres-run does not run yet refused (*bad set). 0, or -1 after printing why when the
+ * domain cannot be run at all (no positive h). */
+static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom *dc, int *bad)
+{
+    const vres_domain *d = &s->dom[k];
+    dc->index = (int)k;
+    dc->dp = d->dp;
+    dc->h = d->h;
+    dc->mass = d->mass;
+    if ((c->dim != 2 && c->dim != 3) || !(dc->h > 0)) {
+        vres_error("the store has dimension %d and h %g m: need 2 or 3 and h > 0", c->dim, dc->h);
+        return -1;
+    }
+    size_t count[VRES_NTYPES] = {0};
+    for (size_t i = 0; i < d->n; i++) count[d->type[i] < VRES_NTYPES ? d->type[i] : VRES_BUFFER]++;
+    dc->nfluid = count[VRES_FLUID];
+    dc->nbuffer = count[VRES_BUFFER];
+    dc->nmoving = count[VRES_MOVING];
+    dc->nwall = count[VRES_FIXED] + dc->nmoving;
+    if (!dc->nfluid) vres_error("the store has no fluid particles: nothing to run"), *bad = 1;
+    for (int t = 0; t < VRES_NTYPES; t++) /* buffers too: their state comes from the coupling, not run yet */
+        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && count[t])
+            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
+                       count[t], vres_ptype_name(t)), *bad = 1;
+    return 0;
+}
+
+/* The wall particles of the store's domain dc->index with a normal (those mDBC corrects), with
+ * a warning when mDBC walls have none. */
+static void count_normals(const vres_store *s, const run_cfg *c, run_dom *dc)
+{
+    const vres_domain *d = &s->dom[dc->index];
+    dc->nnormal = 0;
+    if (!c->mdbc) return;
+    for (size_t i = 0; i < d->n; i++)
+        if (vres_type_is_wall(d->type[i]) && d->normal &&
+            (d->normal[3 * i] != 0 || d->normal[3 * i + 1] != 0 || d->normal[3 * i + 2] != 0))
+            dc->nnormal++;
+    if (!dc->nnormal)
+        vres_warn("Boundary=2 (mDBC) but no wall particle has a normal: every wall behaves as DBC (draw the walls "
+                  "as faces with <layers> for GenCase-style normals)");
+}
+
+/* The numerical options into c (time stepping, kernel, viscosity, shifting, density diffusion,
+ * MinFluidStop), each refusal printed with *bad set. */
+static void read_options(const vres_params *P, run_cfg *c, int *bad)
+{
+    double v = vres_params_get(P, "StepAlgorithm", 2);
+    c->verlet = v == 1;
+    if (v != 1 && v != 2) not_impl(bad, "StepAlgorithm", v, "unknown", "1 (Verlet), 2 (Symplectic)");
+    c->verlet_steps = (int)vres_params_get(P, "VerletSteps", 40);
+    if (c->verlet && !(c->verlet_steps >= 1 && c->verlet_steps == vres_params_get(P, "VerletSteps", 40)))
+        vres_error("VerletSteps=%g: must be a whole number of steps, at least 1",
+                   vres_params_get(P, "VerletSteps", 40)), *bad = 1;
+    if ((v = vres_params_get(P, "Kernel", 2)) != 2) not_impl(bad, "Kernel", v, "not Wendland", "2 (Wendland)");
+    c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", 1);
+    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR)
+        not_impl(bad, "ViscoTreatment", vres_params_get(P, "ViscoTreatment", 1),
+                 c->visco_kind == 2 ? "laminar+SPS" : "unknown", "1 (artificial), 3 (laminar)");
+    v = vres_params_get(P, "Shifting", 0);
+    c->shift = (int)v;
+    if (v != c->shift || c->shift < 0 || c->shift > 3)
+        not_impl(bad, "Shifting", v, v == 4 ? "advanced shifting" : "unknown",
+                 "0 (none), 1 (not near walls), 2 (not near fixed walls), 3 (full)");
+    c->shift_coef = vres_params_get(P, "ShiftCoef", -2);
+    c->shift_tfs = vres_params_get(P, "ShiftTFS", 0);
+    if (c->shift && !(c->shift_tfs >= 0 && c->shift_tfs < c->dim))
+        vres_error("ShiftTFS=%g: must lie in [0, %d) (the dimension: div r inside the fluid)", c->shift_tfs, c->dim),
+            *bad = 1;
+    if ((v = vres_params_get(P, "DtFixed", 0)) != 0) not_impl(bad, "DtFixed", v, "fixed time step", "0 (variable)");
+    c->min_fluid = vres_params_get(P, "MinFluidStop", 0);
+    if (!(c->min_fluid >= 0 && c->min_fluid < 1))
+        vres_error("MinFluidStop=%g: must lie in [0, 1) (the fraction of the fluid particles below which the run "
+                   "stops)", c->min_fluid), *bad = 1;
+    c->ddt = (int)vres_params_get(P, "DensityDT", 0);
+    if (c->ddt < 0 || c->ddt > 2 || c->ddt != vres_params_get(P, "DensityDT", 0))
+        not_impl(bad, "DensityDT", vres_params_get(P, "DensityDT", 0), "Fourtakas on all the fluid or unknown",
+                 "0 (none), 1 (Molteni), 2 (Fourtakas)");
+    c->ddt_delta = vres_params_get(P, "DensityDTvalue", 0.1);
+}
+
+/* Notes on what the run reads but does not use, and the parameters it does not know. */
+static void notes(const vres_store *s)
+{
+    const vres_params *P = &s->params;
+    for (size_t i = 0; i < P->n; i++)
+        if (!is_known(P->p[i].name)) vres_warn("parameter %s is not known to vres-run: not used", P->p[i].name);
+    const vres_param *dti = vres_params_find(P, "DtIni");
+    if (dti && dti->n && dti->v[0] != 0 && strcmp(dti->origin, "default"))
+        vres_info("DtIni=%g not used: the first dt comes from the forces at the start", dti->v[0]);
+    if (vres_params_get(P, "DtAllParticles", 0) != 0)
+        vres_info("DtAllParticles=1 changes nothing here: fixed walls have no acceleration");
+    if (s->gauges_xml) vres_info("gauges are not evaluated during the run: vres-probe reads them from the snapshots");
+}
+
+/* Read and check every parameter of the store into c and each domain's configuration into
+ * set (set->n and set->dom allocated; set->b allocated for the backends, not opened); 0, or -1
+ * after printing each problem. */
+int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c, run_set *set)
 {
     int bad = 0;
     const vres_params *P = &s->params;
     memset(c, 0, sizeof *c);
+    memset(set, 0, sizeof *set);
     if (s->ndomains != 1) {
         vres_error("the store has %zu domains: variable resolution is a later issue; this vres-run runs "
                    "single-domain stores only", s->ndomains);
@@ -130,23 +234,14 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
                    s->nboxes);
         return -1;
     }
-    const vres_domain *d = &s->dom[0];
     c->dim = s->dim;
-    c->h = d->h;
-    if ((c->dim != 2 && c->dim != 3) || !(c->h > 0)) {
-        vres_error("the store has dimension %d and h %g m: need 2 or 3 and h > 0", c->dim, c->h);
-        return -1;
-    }
-    size_t count[VRES_NTYPES] = {0};
-    for (size_t i = 0; i < d->n; i++) count[d->type[i] < VRES_NTYPES ? d->type[i] : VRES_BUFFER]++;
-    c->nfluid = count[VRES_FLUID];
-    c->nmoving = count[VRES_MOVING];
-    c->nwall = count[VRES_FIXED] + c->nmoving;
-    if (!c->nfluid) vres_error("the store has no fluid particles: nothing to run"), bad = 1;
-    for (int t = 0; t < VRES_NTYPES; t++)
-        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && count[t])
-            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
-                       count[t], vres_ptype_name(t)), bad = 1;
+    set->n = s->ndomains;
+    set->dom = vres_xcalloc(set->n, sizeof *set->dom);
+    set->b = vres_xcalloc(set->n, sizeof *set->b);
+    set->dt = vres_xcalloc(set->n, sizeof *set->dt);
+    set->nout = vres_xcalloc(set->n, sizeof *set->nout);
+    for (size_t k = 0; k < set->n; k++)
+        if (read_domain(s, c, k, &set->dom[k], &bad) != 0) return -1;
     if (check_bodies(s) != 0) bad = 1;
     if (s->inout_xml) vres_error("inlet/outlet zones (<inout>): not implemented yet"), bad = 1;
 
@@ -164,8 +259,7 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
             bad = 1;
     if (!(c->cfl > 0 && c->cfl <= 1)) vres_error("cflnumber=%g: must lie in (0, 1]", c->cfl), bad = 1;
 
-    double v;
-    v = vres_params_get(P, "Boundary", 1);
+    double v = vres_params_get(P, "Boundary", 1);
     c->mdbc = v == 2;
     c->slip = 1;
     if (v != 1 && v != 2) not_impl(&bad, "Boundary", v, "unknown", "1 (DBC), 2 (mDBC)");
@@ -175,48 +269,10 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
         if (v != 1 && v != 2 && v != 3)
             vres_error("SlipMode=%g: must be 1 (the wall's own velocity), 2 (no-slip) or 3 (free slip)", v), bad = 1;
     }
-    if (c->mdbc) {
-        for (size_t i = 0; i < d->n; i++)
-            if (vres_type_is_wall(d->type[i]) && d->normal &&
-                (d->normal[3 * i] != 0 || d->normal[3 * i + 1] != 0 || d->normal[3 * i + 2] != 0))
-                c->nnormal++;
-        if (!c->nnormal)
-            vres_warn("Boundary=2 (mDBC) but no wall particle has a normal: every wall behaves as DBC (draw the walls "
-                      "as faces with <layers> for GenCase-style normals)");
-    }
-    v = vres_params_get(P, "StepAlgorithm", 2);
-    c->verlet = v == 1;
-    if (v != 1 && v != 2) not_impl(&bad, "StepAlgorithm", v, "unknown", "1 (Verlet), 2 (Symplectic)");
-    c->verlet_steps = (int)vres_params_get(P, "VerletSteps", 40);
-    if (c->verlet && !(c->verlet_steps >= 1 && c->verlet_steps == vres_params_get(P, "VerletSteps", 40)))
-        vres_error("VerletSteps=%g: must be a whole number of steps, at least 1",
-                   vres_params_get(P, "VerletSteps", 40)), bad = 1;
-    if ((v = vres_params_get(P, "Kernel", 2)) != 2) not_impl(&bad, "Kernel", v, "not Wendland", "2 (Wendland)");
-    c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", 1);
-    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR)
-        not_impl(&bad, "ViscoTreatment", vres_params_get(P, "ViscoTreatment", 1),
-                 c->visco_kind == 2 ? "laminar+SPS" : "unknown", "1 (artificial), 3 (laminar)");
-    v = vres_params_get(P, "Shifting", 0);
-    c->shift = (int)v;
-    if (v != c->shift || c->shift < 0 || c->shift > 3)
-        not_impl(&bad, "Shifting", v, v == 4 ? "advanced shifting" : "unknown",
-                 "0 (none), 1 (not near walls), 2 (not near fixed walls), 3 (full)");
-    c->shift_coef = vres_params_get(P, "ShiftCoef", -2);
-    c->shift_tfs = vres_params_get(P, "ShiftTFS", 0);
-    if (c->shift && !(c->shift_tfs >= 0 && c->shift_tfs < c->dim))
-        vres_error("ShiftTFS=%g: must lie in [0, %d) (the dimension: div r inside the fluid)", c->shift_tfs, c->dim),
-            bad = 1;
-    if ((v = vres_params_get(P, "DtFixed", 0)) != 0) not_impl(&bad, "DtFixed", v, "fixed time step", "0 (variable)");
-    c->min_fluid = vres_params_get(P, "MinFluidStop", 0);
-    if (!(c->min_fluid >= 0 && c->min_fluid < 1))
-        vres_error("MinFluidStop=%g: must lie in [0, 1) (the fraction of the fluid particles below which the run "
-                   "stops)", c->min_fluid), bad = 1;
-    c->ddt = (int)vres_params_get(P, "DensityDT", 0);
-    if (c->ddt < 0 || c->ddt > 2 || c->ddt != vres_params_get(P, "DensityDT", 0))
-        not_impl(&bad, "DensityDT", vres_params_get(P, "DensityDT", 0), "Fourtakas on all the fluid or unknown",
-                 "0 (none), 1 (Molteni), 2 (Fourtakas)");
-    c->ddt_delta = vres_params_get(P, "DensityDTvalue", 0.1);
-    if (periodic_box(s, c) != 0) bad = 1;
+    for (size_t k = 0; k < set->n; k++) count_normals(s, c, &set->dom[k]);
+    read_options(P, c, &bad);
+    for (size_t k = 0; k < set->n; k++)
+        if (periodic_box(s, &set->dom[k]) != 0) bad = 1;
     const vres_param *vp = vres_params_find(P, "Visco");
     if (!vp || vp->n < 1)
         vres_error("the store has no parameter Visco (artificial viscosity alpha, or kinematic viscosity in m^2/s "
@@ -232,7 +288,11 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     if (!(c->tmax > 0)) vres_error("no end time: the store has no TimeMax; give --tmax T"), bad = 1;
     if (!(c->tout > 0)) vres_error("no output interval: the store has no TimeOut; give --tout DT"), bad = 1;
     c->dtmin = vres_params_get(P, "DtMin", 0);
-    if (!(c->dtmin > 0)) c->dtmin = vres_params_get(P, "CoefDtMin", 0.05) * c->h / c->cs0;
+    if (!(c->dtmin > 0)) { /* from the finest domain: its steps are the shortest */
+        double h = set->dom[0].h;
+        for (size_t k = 1; k < set->n; k++) h = fmin(h, set->dom[k].h);
+        c->dtmin = vres_params_get(P, "CoefDtMin", 0.05) * h / c->cs0;
+    }
     c->rhop_min = vres_params_get(P, "RhopOutMin", 700);
     c->rhop_max = vres_params_get(P, "RhopOutMax", 1300);
     const char *loop = getenv("VRES_LOOP");
@@ -240,43 +300,38 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     if (loop && !c->general && strcmp(loop, "specialised"))
         vres_warn("VRES_LOOP=%s not known (general or specialised): using the specialised loop", loop);
     if (c->general) vres_info("VRES_LOOP=general: the general interaction loop (options tested at run time)");
-
-    for (size_t i = 0; i < P->n; i++)
-        if (!is_known(P->p[i].name)) vres_warn("parameter %s is not known to vres-run: not used", P->p[i].name);
-    const vres_param *dti = vres_params_find(P, "DtIni");
-    if (dti && dti->n && dti->v[0] != 0 && strcmp(dti->origin, "default"))
-        vres_info("DtIni=%g not used: the first dt comes from the forces at the start", dti->v[0]);
-    if (vres_params_get(P, "DtAllParticles", 0) != 0)
-        vres_info("DtAllParticles=1 changes nothing here: fixed walls have no acceleration");
-    if (s->gauges_xml) vres_info("gauges are not evaluated during the run: vres-probe reads them from the snapshots");
+    notes(s);
     return bad ? -1 : 0;
 }
 
 /* The list of active modules, as printed at start and recorded in each snapshot ("modules");
  * gpu names the CUDA backend, NULL for the CPU. */
-char *vres_run_modules(const run_cfg *c, const char *gpu)
+char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu)
 {
+    size_t nwall = 0, nnormal = 0, nmoving = 0;
+    for (size_t k = 0; k < set->n; k++)
+        nwall += set->dom[k].nwall, nnormal += set->dom[k].nnormal, nmoving += set->dom[k].nmoving;
     static const char *const ddt_name[] = {"", " ddt-molteni", " ddt-fourtakas"};
     char ddt[64] = "";
     if (c->ddt) snprintf(ddt, sizeof ddt, "%s(delta=%g)", ddt_name[c->ddt], c->ddt_delta);
     char walls[96] = "";
-    if (c->nwall && c->mdbc)
+    if (nwall && c->mdbc)
         snprintf(walls, sizeof walls, " mdbc-walls(slip=%s, %zu with normals, viscobound=%g)",
-                 c->slip == 2 ? "noslip" : c->slip == 3 ? "freeslip" : "vel0", c->nnormal, c->visco_bound);
-    else if (c->nwall) snprintf(walls, sizeof walls, " dbc-walls(viscobound=%g)", c->visco_bound);
+                 c->slip == 2 ? "noslip" : c->slip == 3 ? "freeslip" : "vel0", nnormal, c->visco_bound);
+    else if (nwall) snprintf(walls, sizeof walls, " dbc-walls(viscobound=%g)", c->visco_bound);
     char visc[64];
     if (c->visco_kind == VRES_VISC_LAMINAR) snprintf(visc, sizeof visc, "laminar-viscosity(nu=%g m^2/s)", c->visco);
     else snprintf(visc, sizeof visc, "artificial-viscosity(alpha=%g)", c->visco);
     char moving[64] = "";
-    if (c->nmoving) snprintf(moving, sizeof moving, " moving-walls(%zu particles)", c->nmoving);
+    if (nmoving) snprintf(moving, sizeof moving, " moving-walls(%zu particles)", nmoving);
     char shift[96] = "";
     if (c->shift)
         snprintf(shift, sizeof shift, " shifting(%s, coef=%g, tfs=%g)",
                  c->shift == 1 ? "nobound" : c->shift == 2 ? "nofixed" : "full", c->shift_coef, c->shift_tfs);
     char per[64] = "";
-    if (c->periodic[0] || c->periodic[1] || c->periodic[2])
-        snprintf(per, sizeof per, " periodic(%s%s%s)", c->periodic[0] ? "x" : "", c->periodic[1] ? "y" : "",
-                 c->periodic[2] ? "z" : "");
+    const int *pa = set->dom[0].periodic; /* the root domain's, which the others share */
+    if (pa[0] || pa[1] || pa[2])
+        snprintf(per, sizeof per, " periodic(%s%s%s)", pa[0] ? "x" : "", pa[1] ? "y" : "", pa[2] ? "z" : "");
     char step[48] = "symplectic";
     if (c->verlet) snprintf(step, sizeof step, "verlet(euler every %d)", c->verlet_steps);
     char dev[96];

@@ -26,6 +26,7 @@ typedef struct cpu_ctx {
     size_t nbodies;       /* the store's bodies (entries of body, and of move_walls' mv) */
     vres_domain *d;       /* the domain stepped, in cell order after each sort */
     run_cfg c;            /* the run configuration */
+    run_dom dc;           /* the domain's own configuration */
     vres_sph_consts C;    /* interaction constants */
     vres_cells cells;     /* cell-linked list over the simulation domain, rebuilt each half step */
     size_t cap;           /* particles the domain's arrays and the work arrays below have room for */
@@ -99,7 +100,7 @@ static void cpu_mdbc(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
-    if (!x->c.mdbc || !x->c.nnormal) return;
+    if (!x->c.mdbc || !x->dc.nnormal) return;
     if (x->mvel)
         vres_mdbc_slip_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->mass_p, d->type, d->normal, x->mvel, x->C,
                            x->c.dim, x->c.slip, 0);
@@ -120,13 +121,13 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
         vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, d->rho, d->press, x->inv_rho, d->mass_p, d->type};
         if (c->general)
             vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
-                                   c->ddt, c->nwall > 0, c->visco_kind, shift);
+                                   c->ddt, x->dc.nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(vres_run_pick(c), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar,
-                                                        x->visc, x->shiftv);
+            pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace,
+                                                                x->ar, x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
-                             x->ar, x->visc, x->shiftv, c->ddt, c->nwall > 0, c->visco_kind, shift);
+                             x->ar, x->visc, x->shiftv, c->ddt, x->dc.nwall > 0, c->visco_kind, shift);
     else if (shift)
         x->interact_shift(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
                           x->ar, x->visc, x->shiftv);
@@ -159,8 +160,8 @@ static void cpu_predict(vres_backend *b, double dt)
 static void shift_compute(cpu_ctx *x, double dt)
 {
     vres_domain *d = x->d;
-    vres_shift_cpu(d->n, d->type, d->vel, x->shiftv, dt, x->c.shift_coef * x->c.h, x->c.shift_tfs, x->c.dim,
-                   0.1 * d->dp);
+    vres_shift_cpu(d->n, d->type, d->vel, x->shiftv, dt, x->c.shift_coef * x->dc.h, x->c.shift_tfs, x->c.dim,
+                   0.1 * x->dc.dp);
 }
 
 /* Symplectic corrector, with the shifting of the predicted state (DualSPHysics'
@@ -368,7 +369,7 @@ static void add_work(cpu_ctx *x, void *p, size_t elem, int follow, int from)
 
 /* The work arrays the scene needs, in x's list, each allocated for x->cap particles and
  * starting from its field's values (or zero). */
-static void cpu_work_setup(cpu_ctx *x, const run_cfg *c)
+static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
 {
     for (int k = 0; k < VRES_NFIELDS; k++)
         if (vres_fields[k].state)
@@ -385,7 +386,7 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c)
     /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
-    if (c->nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    if (dc->nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
     if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
     for (int k = 0; k < x->nwork; k++) {
         *x->work[k].p = vres_xmalloc(x->cap * x->work[k].elem + 1);
@@ -394,25 +395,26 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c)
     x->mark = vres_xcalloc(x->cap + 1, 1);
 }
 
-int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c)
+int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c, const run_dom *dc)
 {
     cpu_ctx *x = vres_xcalloc(1, sizeof *x);
     size_t n = d->n;
     x->d = d;
     x->c = *c;
-    x->C = vres_run_consts(c);
+    x->dc = *dc;
+    x->C = vres_run_consts(c, dc);
     x->cap = n;
-    if (vres_cells_init(&x->cells, c->dim, 2.0 * c->h, c->box_lo, c->box_hi, c->periodic) != 0) {
+    if (vres_cells_init(&x->cells, c->dim, 2.0 * dc->h, dc->box_lo, dc->box_hi, dc->periodic) != 0) {
         free(x);
         return -1;
     }
-    cpu_work_setup(x, c);
-    if (c->nmoving) {
+    cpu_work_setup(x, c, dc);
+    if (dc->nmoving) {
         x->nbodies = s->nbodies;
         x->body = vres_wall_bodies(s);
     }
-    x->interact = pick_interaction(vres_run_pick(c));
-    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c)) : NULL;
+    x->interact = pick_interaction(vres_run_pick(c, dc));
+    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c, dc)) : NULL;
     memset(b, 0, sizeof *b);
     b->ctx = x;
     b->n = n;

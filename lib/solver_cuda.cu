@@ -46,8 +46,8 @@ static const size_t scratch_size[5] = {1, 4, 8, 12, 24};
 /* The CUDA backend's state. Pointers named d... or holding particle data are device memory. */
 typedef struct cuda_ctx {
     run_cfg c;            /* the run configuration */
+    run_dom dc;           /* the domain's own configuration */
     vres_sph_consts C;    /* interaction constants (host copy, passed by value to the 3D loops) */
-    double dp;            /* particle spacing (m): the shifting displacement is kept within 0.1 dp */
     int failed;           /* 1 after a CUDA failure (already printed): every operation then gives up */
     char name[300];       /* "cuda(DEVICE NAME)" for the module list */
     size_t cap;           /* particles the device arrays have room for (grown by append) */
@@ -356,7 +356,7 @@ static void cu_restore_start(vres_backend *b)
 static void cu_mdbc(vres_backend *b)
 {
     cuda_ctx *x = ctx_of(b);
-    if (x->failed || !(x->c.mdbc && x->c.nnormal)) return;
+    if (x->failed || !(x->c.mdbc && x->dc.nnormal)) return;
     if (x->mvel)
         vres_mdbc_slip_cuda(b->n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.mass_p, x->dev.type,
                             x->dev.normal, x->mvel, x->C, x->c.dim, x->c.slip, 0);
@@ -387,14 +387,14 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
             return 0;
         if (c->general)
             vres_sph2d_general_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
-                                    c->ddt, c->nwall > 0, c->visco_kind, shift);
+                                    c->ddt, x->dc.nwall > 0, c->visco_kind, shift);
         else
-            pick_interaction2d(vres_run_pick(c), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar,
-                                                        x->visc, x->shiftv);
+            pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace,
+                                                                x->ar, x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cuda(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p,
-                              x->dev.type, x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt, c->nwall > 0, c->visco_kind,
-                              shift);
+                              x->dev.type, x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt, x->dc.nwall > 0,
+                              c->visco_kind, shift);
     else if (shift)
         x->interact_shift(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type,
                           x->C, x->ace, x->ar, x->visc, x->shiftv);
@@ -434,8 +434,8 @@ static void cu_predict(vres_backend *b, double dt)
 /* The shifting displacement from the last sums and the current velocity (before the update). */
 static void shift_compute(cuda_ctx *x, size_t n, double dt)
 {
-    vres_shift_cuda(n, x->dev.type, x->dev.vel, x->shiftv, dt, x->c.shift_coef * x->c.h, x->c.shift_tfs, x->c.dim,
-                    0.1 * x->dp);
+    vres_shift_cuda(n, x->dev.type, x->dev.vel, x->shiftv, dt, x->c.shift_coef * x->dc.h, x->c.shift_tfs, x->c.dim,
+                    0.1 * x->dc.dp);
     launched(x, "shifting");
 }
 
@@ -478,7 +478,7 @@ static void cu_move_walls(vres_backend *b, const vres_motion_state *mv)
 static void cu_wrap(vres_backend *b)
 {
     cuda_ctx *x = ctx_of(b);
-    const int *per = x->c.periodic;
+    const int *per = x->dc.periodic;
     if (x->failed || !(per[0] || per[1] || per[2])) return;
     vres_cells_wrap_loop_cuda(b->n, x->dcells, x->dev.pos);
     launched(x, "periodic wrap");
@@ -742,7 +742,7 @@ static void cu_work_list(cuda_ctx *x)
     /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
-    if (c->nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    if (x->dc.nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
     if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
     for (int k = 0; k < 5; k++) add_work(x, &x->scratch[k], scratch_size[k], VRES_WORK_SCRATCH, -1);
     add_work(x, &x->key, sizeof *x->key, VRES_WORK_SCRATCH, -1);
@@ -765,7 +765,7 @@ static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
     cu_work_list(x);
     for (int k = 0; k < x->nwork; k++)
         if (!alloc(x, x->work[k].p, x->cap * x->work[k].elem, what) || !work_init(x, &x->work[k], 0, n)) return 0;
-    if (x->c.nmoving) {
+    if (x->dc.nmoving) {
         vres_wall_body *wb = vres_wall_bodies(s);
         int good = alloc_copy(x, &x->dbody, wb, s->nbodies, 1, what) &&
                    alloc(x, &x->dmv, s->nbodies * sizeof *x->dmv, what);
@@ -783,7 +783,8 @@ static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
            alloc(x, &x->dred, 2 * sizeof *x->dred, what) && alloc(x, &x->dres, 2 * sizeof *x->dres, what);
 }
 
-extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c)
+extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c,
+                                      const run_dom *dc)
 {
     if (vres_cuda_device_count() < 1) {
         vres_error("CUDA: no GPU answers: cannot run on the CUDA backend (use --device cpu or auto)");
@@ -795,8 +796,8 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
     }
     cuda_ctx *x = (cuda_ctx *)vres_xcalloc(1, sizeof *x);
     x->c = *c;
-    x->C = vres_run_consts(c);
-    x->dp = d->dp;
+    x->dc = *dc;
+    x->C = vres_run_consts(c, dc);
     x->cap = d->n;
     x->nbodies = s->nbodies;
     x->sorted_n = (size_t)-1;
@@ -809,7 +810,7 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
     snprintf(x->name, sizeof x->name, "cuda(%s)", prop.name);
     /* the cells' geometry from the host's own set-up; its host offsets are replaced by device ones */
     vres_cells hg;
-    if (vres_cells_init(&hg, c->dim, 2.0 * c->h, c->box_lo, c->box_hi, c->periodic) != 0) {
+    if (vres_cells_init(&hg, c->dim, 2.0 * dc->h, dc->box_lo, dc->box_hi, dc->periodic) != 0) {
         cu_close(b);
         return -1;
     }
@@ -823,8 +824,8 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
         cu_close(b);
         return -1;
     }
-    x->interact = pick_interaction(vres_run_pick(c));
-    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c)) : NULL;
+    x->interact = pick_interaction(vres_run_pick(c, dc));
+    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c, dc)) : NULL;
     memset(b, 0, sizeof *b);
     b->ctx = x;
     b->n = d->n;

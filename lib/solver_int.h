@@ -18,10 +18,11 @@
 extern "C" { /* also read by the CUDA backend (.cu, compiled as C++) */
 #endif
 
-/* The resolved run configuration: every parameter the solver uses, checked once. */
+/* The resolved run configuration: every parameter the solver uses, checked once, that holds
+ * for the whole run and all its domains (one equation of state, one time step, one output
+ * schedule). What differs between domains is in run_dom. */
 typedef struct run_cfg {
     int dim;              /* 2 (x-z plane) or 3 */
-    double h;             /* smoothing length (m) */
     double rho0;          /* reference density (kg/m^3) */
     double gamma;         /* Tait exponent */
     double B;             /* Tait stiffness (Pa) */
@@ -35,15 +36,9 @@ typedef struct run_cfg {
     double g[3];          /* gravity (m/s^2) */
     double tmax;          /* end time (s) */
     double tout;          /* time between snapshots (s) */
-    double dtmin;         /* time steps below this (s) stop the run as unstable */
+    double dtmin;         /* time steps below this (s) stop the run as unstable (CoefDtMin: from the finest h) */
     double rhop_min;      /* fluid density below this (kg/m^3) is a blow-up (when < rhop_max) */
     double rhop_max;      /* fluid density above this (kg/m^3) is a blow-up */
-    int periodic[3];      /* 1 on the axes that wrap (parameter periodic) */
-    double box_lo[3];     /* lower corner of the cells' box (m): the simulation domain, widened on periodic axes */
-    double box_hi[3];     /* its upper corner (m); on a periodic axis hi - lo is the period */
-    size_t nfluid;        /* fluid particles */
-    size_t nwall;         /* wall particles (DBC), fixed and moving */
-    size_t nmoving;       /* of those, the walls with a prescribed motion */
     int mdbc;             /* 1 for mDBC walls (Boundary=2), 0 for DBC */
     int slip;             /* mDBC SlipMode: 1 wall velocity, 2 no-slip, 3 free slip */
     int verlet;           /* 1 for Verlet (StepAlgorithm=1), 0 for Symplectic */
@@ -51,11 +46,29 @@ typedef struct run_cfg {
     int shift;            /* Shifting: 0 none, 1 not near walls, 2 not near fixed walls, 3 everywhere */
     double shift_coef;    /* ShiftCoef A of dr = A h |v| dt grad C (negative) */
     double shift_tfs;     /* ShiftTFS: div r below this marks the free surface (0: no detection) */
-    size_t nnormal;       /* wall particles with a normal (those mDBC corrects) */
     int threads;          /* OpenMP threads used */
     double min_fluid;     /* MinFluidStop: the run stops when the fluid left is below this fraction of the start's */
     int general;          /* 1: run the general loop (every option tested at run time; VRES_LOOP=general) */
 } run_cfg;
+
+/* What belongs to one domain of a run (the store's domain `index`): its resolution, its cells'
+ * box and periodicity, and what it holds (so that each backend leaves out what its domain does
+ * not need: no wall code without walls, no mDBC without normals, no motion without moving
+ * walls). */
+typedef struct run_dom {
+    int index;            /* the domain's index in the store (s->dom[index]) */
+    double dp;            /* particle spacing (m) */
+    double h;             /* smoothing length (m) */
+    double mass;          /* nominal fluid particle mass rho0 dp^dim (kg) */
+    int periodic[3];      /* 1 on the axes that wrap (parameter periodic) */
+    double box_lo[3];     /* lower corner of the cells' box (m): the simulation domain, widened on periodic axes */
+    double box_hi[3];     /* its upper corner (m); on a periodic axis hi - lo is the period */
+    size_t nfluid;        /* fluid particles at the start */
+    size_t nbuffer;       /* buffer particles at the start (their state comes from the coupling) */
+    size_t nwall;         /* wall particles (DBC or mDBC), fixed and moving: 0 runs the loops without walls */
+    size_t nmoving;       /* of those, the walls with a prescribed motion */
+    size_t nnormal;       /* wall particles with a normal (those mDBC corrects; 0: no mDBC pass) */
+} run_dom;
 
 /* The operations of one backend on one domain's particles, held where the backend computes.
  * Between open and close the backend owns the particle state: the host copy in the store is
@@ -144,24 +157,26 @@ typedef struct vres_backend {
     void (*close)(struct vres_backend *b);
 } vres_backend;
 
-/* The kernel and physics constants of the interaction for configuration c. */
-vres_sph_consts vres_run_consts(const run_cfg *c);
+/* The kernel and physics constants of the interaction for configuration c in domain dc. */
+vres_sph_consts vres_run_consts(const run_cfg *c, const run_dom *dc);
 
-/* The options that pick configuration c's interaction variant (kernels/sph_pick.h). */
-vres_sph_pick vres_run_pick(const run_cfg *c);
+/* The options that pick configuration c's interaction variant in domain dc (kernels/sph_pick.h). */
+vres_sph_pick vres_run_pick(const run_cfg *c, const run_dom *dc);
 
 /* The table of store s's bodies that placing its moving walls reads (kernels/motion.h),
  * s->nbodies entries (at least one allocated); the caller frees it. */
 vres_wall_body *vres_wall_bodies(const vres_store *s);
 
 /* Open the CPU backend over domain d of store s (the store's own arrays: d must live until
- * close). Moving walls keep d's positions now as their reference. 0, or -1 after printing why. */
-int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c);
+ * close), configured by c and d's own dc. Moving walls keep d's positions now as their
+ * reference. 0, or -1 after printing why. */
+int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c, const run_dom *dc);
 
 /* Open the CUDA backend: upload domain d of store s (its moving walls' reference positions are
- * d's positions now) and allocate the device work arrays. 0, or -1 after printing why (no
- * GPU, out of device memory, or a build without CUDA). */
-int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c);
+ * d's positions now), configured by c and d's own dc, and allocate the device work arrays. 0,
+ * or -1 after printing why (no GPU, out of device memory, or a build without CUDA). */
+int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_domain *d, const run_cfg *c,
+                           const run_dom *dc);
 
 #ifdef __cplusplus
 }

@@ -25,18 +25,19 @@ double vres_run_wall_now(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-/* 1 when position x (m) lies in the cells' box of c (the test vres_cells_locate makes). */
-int vres_run_in_box(const run_cfg *c, const double x[3])
+/* 1 when position x (m) lies in the cells' box of domain dc (the test vres_cells_locate makes). */
+int vres_run_in_box(const run_cfg *c, const run_dom *dc, const double x[3])
 {
     for (int a = 0; a < 3; a++) {
         if (a == 1 && c->dim == 2) continue;
-        if (!(x[a] >= c->box_lo[a] && (c->periodic[a] ? x[a] < c->box_hi[a] : x[a] <= c->box_hi[a]))) return 0;
+        if (!(x[a] >= dc->box_lo[a] && (dc->periodic[a] ? x[a] < dc->box_hi[a] : x[a] <= dc->box_hi[a]))) return 0;
     }
     return 1;
 }
 
-/* Print the diagnosis of bad particle i (found after step `step` at time t). */
-void vres_run_diagnose(const vres_domain *d, const run_cfg *c, size_t i, long step, double t)
+/* Print the diagnosis of bad particle i of domain d (configured by dc; found after step `step`
+ * at time t). */
+void vres_run_diagnose(const vres_domain *d, const run_cfg *c, const run_dom *dc, size_t i, long step, double t)
 {
     const double *x = &d->pos[3 * i];
     const float *v = &d->vel[3 * i];
@@ -45,7 +46,7 @@ void vres_run_diagnose(const vres_domain *d, const run_cfg *c, size_t i, long st
     else if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]))
         snprintf(what, sizeof what, "non-finite velocity (%g, %g, %g) m/s", v[0], v[1], v[2]);
     else if (!isfinite(d->rho[i])) snprintf(what, sizeof what, "non-finite density %g", d->rho[i]);
-    else if (!vres_run_in_box(c, x))
+    else if (!vres_run_in_box(c, dc, x))
         snprintf(what, sizeof what, "a wall particle left the simulation domain (walls cannot be excluded)");
     else
         snprintf(what, sizeof what, "density %g kg/m^3 outside RhopOutMin..RhopOutMax = %g..%g", d->rho[i],
@@ -64,8 +65,8 @@ typedef struct out_stats {
     size_t nwall;   /* wall particles */
 } out_stats;
 
-/* Fluid mass, largest speed, density range and counts of the domain. */
-static out_stats stats(const vres_domain *d)
+/* Add domain d's fluid mass, largest speed, density range and counts to o. */
+static void stats_add(out_stats *o, const vres_domain *d)
 {
     double m = 0, v2 = 0, lo = INFINITY, hi = -INFINITY;
     size_t nf = 0;
@@ -80,16 +81,38 @@ static out_stats stats(const vres_domain *d)
         if (d->rho[i] < lo) lo = d->rho[i];
         if (d->rho[i] > hi) hi = d->rho[i];
     }
-    out_stats o = {m, sqrt(v2), lo, hi, nf, d->n - nf};
+    o->mass += m;
+    o->vmax = fmax(o->vmax, sqrt(v2));
+    o->rho_lo = fmin(o->rho_lo, lo);
+    o->rho_hi = fmax(o->rho_hi, hi);
+    o->nfluid += nf;
+    o->nwall += d->n - nf;
+}
+
+/* The figures of the run.tsv line over every domain of s. */
+static out_stats stats(const vres_store *s)
+{
+    out_stats o = {0, 0, INFINITY, -INFINITY, 0, 0};
+    for (size_t k = 0; k < s->ndomains; k++) stats_add(&o, &s->dom[k]);
     return o;
+}
+
+/* Copy every domain's particle state from its backend into the store. 0 or -1. */
+static int download_all(vres_store *s, run_set *set)
+{
+    for (size_t k = 0; k < set->n; k++)
+        if (set->b[k].download(&set->b[k], &s->dom[set->dom[k].index]) != 0) return -1;
+    return 0;
 }
 
 /* Write the store's current state as path (pressure refreshed from the density), with what a
  * restart needs in its parameters. 0 or -1. */
 static int write_snapshot(vres_store *s, const run_cfg *c, const run_resume *r, const char *path, double t, long step)
 {
-    vres_domain *d = &s->dom[0];
-    vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
+    for (size_t k = 0; k < s->ndomains; k++) {
+        vres_domain *d = &s->dom[k];
+        vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
+    }
     s->time = t;
     s->step = step;
     vres_params_set1(&s->params, "run_t0", r->t0, "s", "run");
@@ -100,27 +123,28 @@ static int write_snapshot(vres_store *s, const run_cfg *c, const run_resume *r, 
     return vres_store_write(s, path);
 }
 
-/* Write snapshot number r->next_snap and its run.tsv line from the backend's state. 0, or -1
+/* Write snapshot number r->next_snap and its run.tsv line from the backends' state. 0, or -1
  * after printing why. */
-int vres_run_output(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, const run_files *f,
+int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, const run_files *f,
                     run_clock *clk, double t, long step, double dt)
 {
     /* the rate counts the stepping since the previous output, not the writing of snapshots */
     double now = vres_run_wall_now();
     double steps_s = now > clk->last ? (double)(step - clk->last_step) / (now - clk->last) : 0;
-    size_t pairs = b->count_pairs(b);
-    if (b->download(b, &s->dom[0]) != 0) return -1;
+    size_t pairs = 0, n = 0;
+    for (size_t k = 0; k < set->n; k++) pairs += set->b[k].count_pairs(&set->b[k]), n += set->b[k].n;
+    if (download_all(s, set) != 0) return -1;
     r->next_snap++;
     char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
     int rc = write_snapshot(s, c, r, path, t, step);
     free(path);
     if (rc) return -1;
-    out_stats st = stats(&s->dom[0]);
+    out_stats st = stats(s);
     /* interactions: ordered pairs within 2h, once per force evaluation (two per Symplectic step) */
     double passes = c->verlet ? 1 : 2;
     fprintf(f->tsv, "%.9g\t%ld\t%.6g\t%zu\t%zu\t%.9g\t%.6g\t%.7g\t%.7g\t%.3f\t%.4g\t%.0f\t%zu\t%.4g\n", t, step, dt,
             st.nfluid, st.nwall, st.mass, st.vmax, st.rho_lo, st.rho_hi, now - clk->start,
-            steps_s * (double)s->dom[0].n, r->nexcluded, pairs, steps_s * passes * (double)pairs);
+            steps_s * (double)n, r->nexcluded, pairs, steps_s * passes * (double)pairs);
     fflush(f->tsv);
     if (ferror(f->tsv)) {
         vres_error("%s/run.tsv: write failed", f->dir);
@@ -133,11 +157,11 @@ int vres_run_output(vres_store *s, vres_backend *b, const run_cfg *c, run_resume
     return 0;
 }
 
-/* Write RUNDIR/checkpoint.h5 (atomically) from the backend's state. 0 or -1. */
-int vres_run_checkpoint(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+/* Write RUNDIR/checkpoint.h5 (atomically) from the backends' state. 0 or -1. */
+int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
                         run_clock *clk, double t, long step)
 {
-    if (b->download(b, &s->dom[0]) != 0) return -1;
+    if (download_all(s, set) != 0) return -1;
     char *path = vres_xasprintf("%s/checkpoint.h5", dir);
     int rc = write_snapshot(s, c, r, path, t, step);
     if (!rc) vres_debug("checkpoint at t = %.6g s, step %ld: %s", t, step, path);
@@ -180,16 +204,19 @@ static int write_last_good(vres_store *s, const run_cfg *c, const run_resume *r,
     return rc ? VRES_RUN_FAIL : VRES_RUN_UNSTABLE;
 }
 
-/* Stop after a blow-up: diagnose slot bad (the state after the failed step), put the step-start
- * state (the last good one) back, write it as snap_last_good.h5 and say where. Returns
- * VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
-int vres_run_stop_unstable(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
-                           size_t bad, long step, double t, double t0, long step0)
+/* Stop after a blow-up: diagnose slot bad of domain k (the state after the failed step; none
+ * when bad is (size_t)-1), put every domain's step-start state (the last good one) back, write
+ * it as snap_last_good.h5 and say where. Returns VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the
+ * write fails). */
+int vres_run_stop_unstable(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
+                           size_t k, size_t bad, long step, double t, double t0, long step0)
 {
-    vres_domain *d = &s->dom[0];
-    if (bad != (size_t)-1 && b->download(b, d) == 0) vres_run_diagnose(d, c, bad, step, t);
-    b->restore_start(b);
-    if (b->download(b, d) != 0) return VRES_RUN_FAIL;
+    if (bad != (size_t)-1) {
+        vres_domain *d = &s->dom[set->dom[k].index];
+        if (set->b[k].download(&set->b[k], d) == 0) vres_run_diagnose(d, c, &set->dom[k], bad, step, t);
+    }
+    for (size_t j = 0; j < set->n; j++) set->b[j].restore_start(&set->b[j]);
+    if (download_all(s, set) != 0) return VRES_RUN_FAIL;
     return write_last_good(s, c, r, dir, t0, step0);
 }
 /* Open RUNDIR/excluded.tsv for appending (after a restart's earlier lines), with its header
@@ -208,13 +235,14 @@ static int open_excluded(run_files *f)
 }
 
 /* Remove the fluid particles that left the simulation domain (finite state, outside the cells'
- * box) from the backend (in its own memory), each recorded in RUNDIR/excluded.tsv with the
+ * box) from domain k's backend (in its own memory), each recorded in RUNDIR/excluded.tsv with the
  * time, step and reason. A wall outside the box is not removed: the run stops, its diagnosis
  * printed and the step-start state (step0 at t0) written as the last good one. Returns
  * VRES_RUN_OK, or the run's exit status after printing why. */
-static int exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
-                       long step, double t0, long step0)
+static int exclude_out(vres_store *s, run_set *set, size_t k, const run_cfg *c, run_resume *r, run_files *f,
+                       double t, long step, double t0, long step0)
 {
+    vres_backend *b = &set->b[k];
     vres_domain out;
     memset(&out, 0, sizeof out);
     size_t nex = b->mark_out(b);
@@ -224,9 +252,9 @@ static int exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_res
     }
     for (size_t i = 0; i < out.n; i++) /* a wall outside stops the run: find it before changing anything */
         if (!vres_type_acts_fluid(out.type[i])) {
-            vres_run_diagnose(&out, c, i, step, t);
+            vres_run_diagnose(&out, c, &set->dom[k], i, step, t);
             vres_domain_free(&out);
-            return vres_run_stop_unstable(s, b, c, r, f->dir, (size_t)-1, step, t, t0, step0);
+            return vres_run_stop_unstable(s, set, c, r, f->dir, k, (size_t)-1, step, t, t0, step0);
         }
     if (open_excluded(f) != 0) {
         vres_domain_free(&out);
@@ -255,23 +283,31 @@ static int exclude_out(vres_store *s, vres_backend *b, const run_cfg *c, run_res
     return bad ? VRES_RUN_FAIL : VRES_RUN_OK;
 }
 
-/* After a step (or half step) that ended at time t: stop on a fatal particle, exclude the
- * fluid that left the domain, and stop when too little fluid is left. Returns VRES_RUN_OK to
- * go on, or the run's exit status after printing why. */
-int vres_run_after_step(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+/* After a step (or half step) that ended at time t: stop on a fatal particle in any domain,
+ * exclude the fluid that left each domain, and stop when too little fluid is left. Returns
+ * VRES_RUN_OK to go on, or the run's exit status after printing why. */
+int vres_run_after_step(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, run_files *f, double t,
                         long step, double t0, long step0)
 {
-    size_t nout, bad = b->check(b, &nout);
-    if (bad != (size_t)-1) return vres_run_stop_unstable(s, b, c, r, f->dir, bad, step, t, t0, step0);
-    if (!nout) return VRES_RUN_OK;
-    int rc = exclude_out(s, b, c, r, f, t, step, t0, step0);
-    if (rc != VRES_RUN_OK) return rc;
-    size_t nf = b->count(b, VRES_FLUID);
+    size_t excluded = 0, *nout = set->nout;
+    for (size_t k = 0; k < set->n; k++) {
+        size_t bad = set->b[k].check(&set->b[k], &nout[k]);
+        if (bad != (size_t)-1) return vres_run_stop_unstable(s, set, c, r, f->dir, k, bad, step, t, t0, step0);
+    }
+    for (size_t k = 0; k < set->n; k++) {
+        if (!nout[k]) continue;
+        int rc = exclude_out(s, set, k, c, r, f, t, step, t0, step0);
+        if (rc != VRES_RUN_OK) return rc;
+        excluded++;
+    }
+    if (!excluded) return VRES_RUN_OK;
+    size_t nf = 0;
+    for (size_t k = 0; k < set->n; k++) nf += set->b[k].count(&set->b[k], VRES_FLUID);
     if (nf == 0 || (c->min_fluid > 0 && nf < c->min_fluid * r->nfluid0)) {
         vres_error("unstable at step %ld, t = %.6g s: %zu fluid particles left, below MinFluidStop=%g of the %.0f "
                    "at the start (%.0f excluded)", step, t, nf, c->min_fluid, r->nfluid0, r->nexcluded);
         /* the state after the exclusions is sound: it is the last good one */
-        if (b->download(b, &s->dom[0]) != 0) return VRES_RUN_FAIL;
+        if (download_all(s, set) != 0) return VRES_RUN_FAIL;
         return write_last_good(s, c, r, f->dir, t, step);
     }
     return VRES_RUN_OK;

@@ -1,7 +1,8 @@
 /* solver_run.h - what the files of the time loop share (internal to libvres): the run's
  * configuration is read and checked in solver_config.c; the run directory's output (snapshots,
  * run.tsv, checkpoints, restarts, the exclusion record, the diagnosis of a blow-up) is written
- * by solver_output.c; the step sequence that calls both runs in solver.c. */
+ * by solver_output.c; the step sequence that calls both runs in solver.c, over the run's
+ * domains phase by phase, with the coupling's hooks (solver_couple.c) where the domains meet. */
 #ifndef VRES_SOLVER_RUN_H
 #define VRES_SOLVER_RUN_H
 
@@ -28,6 +29,16 @@ typedef struct run_files {
     FILE *excl;         /* excluded.tsv, opened at the first exclusion (NULL until then) */
 } run_files;
 
+/* The domains of a run, in the store's order: each one's configuration, the backend that holds
+ * its particles, and what the step sequence keeps of it between phases. */
+typedef struct run_set {
+    size_t n;             /* domains */
+    run_dom *dom;         /* [n] each domain's configuration */
+    vres_backend *b;      /* [n] the backend holding each domain's particles */
+    double *dt;           /* [n] each domain's own stable time step at the last force evaluation (s) */
+    size_t *nout;         /* [n] each domain's particles outside its box at the last check */
+} run_set;
+
 /* The run's progress between outputs. */
 typedef struct run_clock {
     double start;       /* wall time at the start of the time loop (s) */
@@ -38,47 +49,66 @@ typedef struct run_clock {
 
 /* ---- solver_config.c: the configuration ---- */
 
-/* Read and check every parameter of the store into c; 0, or -1 after printing each problem. */
-int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c);
+/* Read and check every parameter of the store into c and each domain's configuration into
+ * set (set->n and set->dom allocated; set->b allocated for the backends, not opened); 0, or -1
+ * after printing each problem. */
+int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c, run_set *set);
 
 /* The list of active modules, as printed at start and recorded in each snapshot ("modules");
  * gpu names the CUDA backend, NULL for the CPU. */
-char *vres_run_modules(const run_cfg *c, const char *gpu);
+char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu);
+
+/* ---- solver_couple.c: the hooks of the coupling between domains ---- */
+
+/* After the sort of every domain (at the step's start, before its state is kept, and mid-step
+ * after the predictor): each domain's buffer particles get their velocity and density
+ * interpolated from the sorted fluid of their donor domains (never from their buffers or
+ * walls). Does nothing with one domain. 0, or -1 after printing why. */
+int vres_couple_buffers(run_set *set, const run_cfg *c, double t);
+
+/* After the corrector (or the Verlet step) of every domain, the walls placed, the step ending
+ * at t after dt (s): buffer particles that entered the fluid region become fluid and fluid
+ * that entered a buffer becomes buffer, the mass flux through each buffer's outer edge
+ * accumulates, and particles are created (the backends' append) or deleted (their marks and
+ * remove). Does nothing with one domain. 0, or -1 after printing why. */
+int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt);
 
 /* ---- solver_output.c: the run directory ---- */
 
 /* Seconds of wall-clock time since an arbitrary origin. */
 double vres_run_wall_now(void);
 
-/* 1 when position x (m) lies in the cells' box of c (the test vres_cells_locate makes). */
-int vres_run_in_box(const run_cfg *c, const double x[3]);
+/* 1 when position x (m) lies in the cells' box of domain dc (the test vres_cells_locate makes). */
+int vres_run_in_box(const run_cfg *c, const run_dom *dc, const double x[3]);
 
-/* Print the diagnosis of bad particle i (found after step `step` at time t). */
-void vres_run_diagnose(const vres_domain *d, const run_cfg *c, size_t i, long step, double t);
+/* Print the diagnosis of bad particle i of domain d (configured by dc; found after step `step`
+ * at time t). */
+void vres_run_diagnose(const vres_domain *d, const run_cfg *c, const run_dom *dc, size_t i, long step, double t);
 
-/* Write snapshot number r->next_snap and its run.tsv line from the backend's state. 0, or -1
+/* Write snapshot number r->next_snap and its run.tsv line from the backends' state. 0, or -1
  * after printing why. */
-int vres_run_output(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, const run_files *f,
+int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, const run_files *f,
                     run_clock *clk, double t, long step, double dt);
 
-/* Write RUNDIR/checkpoint.h5 (atomically) from the backend's state. 0 or -1. */
-int vres_run_checkpoint(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
+/* Write RUNDIR/checkpoint.h5 (atomically) from the backends' state. 0 or -1. */
+int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
                         run_clock *clk, double t, long step);
 
 /* The progress line on a terminal: rewritten in place at most twice a second while the run
  * goes on (stderr only, never with -q or when stderr is not a terminal); done = 1 ends it. */
 void vres_run_progress(const run_cfg *c, const run_clock *clk, double t0, double t, long step, double dt, int done);
 
-/* Stop after a blow-up: diagnose slot bad (the state after the failed step), put the step-start
- * state (the last good one) back, write it as snap_last_good.h5 and say where. Returns
- * VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the write fails). */
-int vres_run_stop_unstable(vres_store *s, vres_backend *b, const run_cfg *c, const run_resume *r, const char *dir,
-                           size_t bad, long step, double t, double t0, long step0);
+/* Stop after a blow-up: diagnose slot bad of domain k (the state after the failed step; none
+ * when bad is (size_t)-1), put every domain's step-start state (the last good one) back, write
+ * it as snap_last_good.h5 and say where. Returns VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the
+ * write fails). */
+int vres_run_stop_unstable(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
+                           size_t k, size_t bad, long step, double t, double t0, long step0);
 
-/* After a step (or half step) that ended at time t: stop on a fatal particle, exclude the
- * fluid that left the domain, and stop when too little fluid is left. Returns VRES_RUN_OK to
- * go on, or the run's exit status after printing why. */
-int vres_run_after_step(vres_store *s, vres_backend *b, const run_cfg *c, run_resume *r, run_files *f, double t,
+/* After a step (or half step) that ended at time t: stop on a fatal particle in any domain,
+ * exclude the fluid that left each domain, and stop when too little fluid is left. Returns
+ * VRES_RUN_OK to go on, or the run's exit status after printing why. */
+int vres_run_after_step(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, run_files *f, double t,
                         long step, double t0, long step0);
 
 /* Make the run directory (and parents) and check it can take the run: a new run needs one

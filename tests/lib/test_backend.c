@@ -30,17 +30,26 @@ static run_cfg config(void)
     run_cfg c;
     memset(&c, 0, sizeof c);
     c.dim = 2;
-    c.h = H;
     c.rho0 = 1000, c.gamma = 7, c.cs0 = 10, c.B = c.cs0 * c.cs0 * c.rho0 / c.gamma;
     c.cfl = 0.2;
     c.visco_kind = VRES_VISC_ARTIFICIAL, c.visco = 0.01, c.visco_bound = 1;
     c.tmax = c.tout = 1, c.dtmin = 1e-12, c.rhop_min = 700, c.rhop_max = 1300;
-    c.box_hi[0] = c.box_hi[2] = 1;
-    c.nfluid = c.nwall = c.nmoving = 1; /* what opens the arrays the test needs */
-    c.mdbc = 1, c.slip = 2, c.nnormal = 1;
+    c.mdbc = 1, c.slip = 2;
     c.verlet = 1, c.verlet_steps = 40;
     c.threads = 1;
     return c;
+}
+
+/* The configuration of the test's domain: walls, moving walls and normals present (what opens
+ * the arrays the test needs), in the box [0, 1] x [0, 1] m. */
+static run_dom domain(void)
+{
+    run_dom dc;
+    memset(&dc, 0, sizeof dc);
+    dc.dp = dc.h = H;
+    dc.box_hi[0] = dc.box_hi[2] = 1;
+    dc.nfluid = dc.nwall = dc.nmoving = dc.nnormal = 1;
+    return dc;
 }
 
 /* Particle j of a set: its type by j % 4 (fluid, buffer, fixed, moving), isolated on a lattice
@@ -85,8 +94,8 @@ static int same_particle(const vres_domain *a, size_t i, const vres_domain *b, s
 {
     for (int k = 0; k < VRES_NFIELDS; k++) {
         const vres_field *f = &vres_fields[k];
-        if (memcmp((const char *)vres_field_array(a, f) + i * f->elem, (const char *)vres_field_array(b, f) + j * f->elem,
-                   f->elem))
+        if (memcmp((const char *)vres_field_array(a, f) + i * f->elem,
+                   (const char *)vres_field_array(b, f) + j * f->elem, f->elem))
             return 0;
     }
     return 1;
@@ -108,8 +117,9 @@ START_TEST(remove_and_append_keep_every_field)
     vres_store *s = set_of(120);
     vres_domain *d = &s->dom[0];
     run_cfg c = config();
+    run_dom dc = domain();
     vres_backend b;
-    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, &c), 0);
+    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, &c, &dc), 0);
     ck_assert_int_eq(b.sort(&b, 0), 0);
     ck_assert_int_eq(b.download(&b, d), 0);
     vres_domain before = copy_of(d);
@@ -150,8 +160,10 @@ START_TEST(backend_state_follows_the_particles)
     vres_store *s = set_of(160);
     vres_domain *d = &s->dom[0];
     run_cfg c = config();
+    run_dom dc = domain();
     vres_backend b;
-    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, &c), 0); /* Verlet's previous step and the walls' reference now */
+    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, &c, &dc),
+                     0); /* Verlet's previous step and the walls' reference now */
     vres_domain at_open = copy_of(d);
     vres_domain add;
     memset(&add, 0, sizeof add);
@@ -228,9 +240,10 @@ START_TEST(out_of_box_removed_and_cells_consistent)
     for (size_t i = 0; i < d->n; i++) nout += d->pos[3 * i] < 0 || d->pos[3 * i + 2] < 0;
     ck_assert(nout > 10);
     run_cfg c = config();
-    c.verlet = 0, c.nmoving = 0, c.mdbc = 0;
+    run_dom dc = domain();
+    c.verlet = 0, c.mdbc = 0, dc.nmoving = 0;
     vres_backend b;
-    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, &c), 0);
+    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, &c, &dc), 0);
     ck_assert_int_eq(b.sort(&b, 0), 0);
     ck_assert_uint_eq(b.mark_out(&b), nout);
     vres_domain out;

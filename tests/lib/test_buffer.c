@@ -31,12 +31,11 @@
 
 /* The run configuration of the block: 2D, DBC walls, artificial viscosity, Molteni's density
  * diffusion (which fluid-wall pairs leave out: a wall neighbour shows in the density rate). */
-static run_cfg config(size_t nfluid, size_t nwall)
+static run_cfg config(void)
 {
     run_cfg c;
     memset(&c, 0, sizeof c);
     c.dim = 2;
-    c.h = 1.2 * sqrt(2.0) * DP;
     c.rho0 = 1000;
     c.gamma = 7;
     c.cs0 = 20;
@@ -51,15 +50,25 @@ static run_cfg config(size_t nfluid, size_t nwall)
     c.tmax = c.tout = 1;
     c.dtmin = 1e-9;
     c.rhop_min = 700, c.rhop_max = 1300;
-    double lo[3] = {-0.05, 0, -0.06}, hi[3] = {0.17, 0, 0.15};
-    memcpy(c.box_lo, lo, sizeof lo);
-    memcpy(c.box_hi, hi, sizeof hi);
-    c.nfluid = nfluid;
-    c.nwall = nwall;
     c.slip = 1;
     c.verlet_steps = 40;
     c.threads = 1;
     return c;
+}
+
+/* The block's domain configuration, with nfluid fluid and nwall wall particles. */
+static run_dom domain(size_t nfluid, size_t nwall)
+{
+    run_dom dc;
+    memset(&dc, 0, sizeof dc);
+    dc.dp = DP;
+    dc.h = 1.2 * sqrt(2.0) * DP;
+    double lo[3] = {-0.05, 0, -0.06}, hi[3] = {0.17, 0, 0.15};
+    memcpy(dc.box_lo, lo, sizeof lo);
+    memcpy(dc.box_hi, hi, sizeof hi);
+    dc.nfluid = nfluid;
+    dc.nwall = nwall;
+    return dc;
 }
 
 /* The block into a new store's domain, the particle with id `jid` of type jtype (the others
@@ -139,12 +148,13 @@ START_TEST(interaction_feels_buffer_as_fluid)
     vres_store *s[3];
     vres_cells g[3];
     uint64_t jid = 0;
-    const run_cfg c = config(0, 0);
-    const vres_sph_consts C = vres_run_consts(&c);
+    const run_cfg c = config();
+    const run_dom dc = domain(0, 0);
+    const vres_sph_consts C = vres_run_consts(&c, &dc);
     for (int t = 0; t < 3; t++) {
         s[t] = block(types[t], &jid);
         vres_domain *d = &s[t]->dom[0];
-        ck_assert_int_eq(vres_cells_init(&g[t], 2, 2 * c.h, c.box_lo, c.box_hi, NULL), 0);
+        ck_assert_int_eq(vres_cells_init(&g[t], 2, 2 * dc.h, dc.box_lo, dc.box_hi, NULL), 0);
         vres_cells_build(&g[t], d->pos, d->n);
         ck_assert_int_eq(vres_cells_reorder(&g[t], d), 0);
         vres_eos_loop_cpu(d->n, d->rho, d->press, c.rho0, c.B, c.gamma);
@@ -184,7 +194,8 @@ static void step(vres_store *s, const run_cfg *c, double dt, vres_domain *after_
 {
     vres_backend b;
     vres_domain *d = &s->dom[0];
-    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, c), 0);
+    const run_dom dc = domain(vres_domain_count(d, VRES_FLUID), vres_domain_count(d, VRES_FIXED));
+    ck_assert_int_eq(vres_backend_cpu_open(&b, s, d, c, &dc), 0);
     double visc;
     ck_assert_int_eq(b.sort(&b, 0), 0);
     b.save_start(&b);
@@ -221,7 +232,7 @@ START_TEST(buffer_is_advected_over_a_step)
         uint64_t jid = 0;
         vres_store *s = block(VRES_BUFFER, &jid);
         vres_domain *d = &s->dom[0];
-        run_cfg c = config(vres_domain_count(d, VRES_FLUID), vres_domain_count(d, VRES_FIXED));
+        run_cfg c = config();
         c.verlet = verlet;
         size_t j = slot_of(d, jid);
         double x0[3] = {d->pos[3 * j], d->pos[3 * j + 1], d->pos[3 * j + 2]};
@@ -243,8 +254,7 @@ START_TEST(fluid_moves_as_next_to_fluid)
 {
     uint64_t jid = 0;
     vres_store *sb = block(VRES_BUFFER, &jid), *sf = block(VRES_FLUID, &jid);
-    const vres_domain *d = &sb->dom[0];
-    run_cfg c = config(vres_domain_count(d, VRES_FLUID), vres_domain_count(d, VRES_FIXED));
+    run_cfg c = config();
     vres_domain pb, pf;
     step(sb, &c, 2e-4, &pb);
     step(sf, &c, 2e-4, &pf);
