@@ -272,19 +272,12 @@ static void gather_bytes(cuda_ctx *x, size_t n, void **arr, size_t bytes, const 
     *arr = dst;
 }
 
-/* Permute the n-particle array *arr (elements of w values T) by the last sort. */
-template <typename T> static void gather(cuda_ctx *x, size_t n, T **arr, size_t w)
-{
-    gather_bytes(x, n, (void **)arr, w * sizeof(T), x->hc.perm);
-}
-
-/* Permute every field of domain set d (device arrays; NULL ones skipped) by the last sort,
- * only the state fields when state_only. */
-static void gather_fields(cuda_ctx *x, size_t n, vres_domain *d, int state_only)
+/* Permute the first n of every field of the device domain d by hc.perm (the last sort's, or a
+ * compaction's selection). */
+static void gather_fields(cuda_ctx *x, size_t n, vres_domain *d)
 {
     for (int k = 0; k < VRES_NFIELDS; k++)
-        if (!state_only || vres_fields[k].state)
-            gather_bytes(x, n, vres_field_slot(d, &vres_fields[k]), vres_fields[k].elem, x->hc.perm);
+        gather_bytes(x, n, vres_field_slot(d, &vres_fields[k]), vres_fields[k].elem, x->hc.perm);
 }
 
 /* Copy the first n particles' fields from src to dst (field.h's table; only the state fields
@@ -323,12 +316,10 @@ static int cu_sort(vres_backend *b, int carry)
     if (!launched(x, "cell offsets") || !ok(x, cudaMemcpy(x->dcells, &x->hc, sizeof x->hc, cudaMemcpyHostToDevice),
                                             "copy the cells"))
         return -1;
-    gather_fields(x, n, &x->dev, 0);
-    gather(x, n, &x->xref, 3);
-    gather(x, n, &x->mvel, 3);
-    gather(x, n, &x->velm1, 3);
-    gather(x, n, &x->rhom1, 1);
-    if (carry) gather_fields(x, n, &x->start, 1);
+    gather_fields(x, n, &x->dev);
+    for (int w = 0; w < x->nwork; w++)
+        if (x->work[w].follow == VRES_WORK_CARRY || (carry && x->work[w].follow == VRES_WORK_START))
+            gather_bytes(x, n, x->work[w].p, x->work[w].elem, x->hc.perm);
     x->sorted_n = n;
     return x->failed ? -1 : 0;
 }
@@ -609,8 +600,7 @@ static int cu_remove(vres_backend *b, const uint8_t *mark)
     size_t k = select_slots(x, x->flag, b->n, what);
     if (k == (size_t)-1) return -1;
     if (k == b->n) return 0;
-    for (int f = 0; f < VRES_NFIELDS; f++)
-        gather_bytes(x, k, vres_field_slot(&x->dev, &vres_fields[f]), vres_fields[f].elem, x->hc.perm);
+    gather_fields(x, k, &x->dev);
     for (int w = 0; w < x->nwork; w++)
         if (x->work[w].follow != VRES_WORK_SCRATCH) gather_bytes(x, k, x->work[w].p, x->work[w].elem, x->hc.perm);
     if (x->failed) return -1;
