@@ -16,6 +16,7 @@
 #include "device.h"
 #include "fileio.h"
 #include "log.h"
+#include "solver_couple.h"
 #include "solver_int.h"
 #include "solver_motion.h"
 #include "solver_run.h"
@@ -190,6 +191,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     run_motion m = {vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv)};
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m.mv0[k]);
     if (check_start(s, set, c, &m, t, step) != 0) rc = VRES_RUN_FAIL;
+    else if (!restarted && vres_couple_start(set, c) != 0) rc = VRES_RUN_FAIL;
     else if (!restarted) {
         r->next_due = 1;
         if (vres_run_output(s, set, c, r, f, &clk, t, step, 0) != 0) rc = VRES_RUN_FAIL;
@@ -277,6 +279,7 @@ static int open_backends(vres_store *s, run_set *set, const run_cfg *c, vres_dev
 static void free_set(run_set *set, int opened)
 {
     for (size_t k = 0; opened && k < set->n; k++) set->b[k].close(&set->b[k]);
+    vres_couple_close(set->couple);
     free(set->dom);
     free(set->b);
     free(set->dt);
@@ -299,6 +302,19 @@ static void announce(vres_store *s, const run_set *set, const run_cfg *c, const 
     vres_info("modules: %s", mods);
     vres_params_set_str(&s->params, "modules", mods, "run");
     free(mods);
+}
+
+/* Open RUNDIR/ledger.tsv for appending (after a restart's earlier lines), with its header when
+ * new. 0, or -1 after printing why. */
+static int open_ledger(run_files *f, const char *dir)
+{
+    char *path = vres_xasprintf("%s/ledger.tsv", dir);
+    int fresh = access(path, F_OK) != 0;
+    f->ledger = fopen(path, "a");
+    if (!f->ledger) vres_error("%s: cannot write: %s", path, strerror(errno));
+    else if (fresh) fputs(vres_couple_ledger_header, f->ledger);
+    free(path);
+    return f->ledger ? 0 : -1;
 }
 
 /* Check, pick the device, prepare the run directory and its table, then run the time loop. */
@@ -330,6 +346,13 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }
+    if (set.n > 1 && !set.b[0].donor_view) {
+        vres_error("%zu domains: the %s backend does not run the coupling of variable resolution yet; use "
+                   "--device cpu", set.n, set.b[0].name);
+        free_set(&set, 1);
+        return VRES_RUN_FAIL;
+    }
+    set.couple = vres_couple_open(s, &c, o->restart);
     announce(s, &set, &c, o, dev);
     if (o->tmax > 0) vres_params_set1(&s->params, "TimeMax", c.tmax, "s", "set");
     if (o->tout > 0) vres_params_set1(&s->params, "TimeOut", c.tout, "s", "set");
@@ -337,7 +360,7 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
 
     char *tsvpath = vres_xasprintf("%s/run.tsv", o->rundir);
     int fresh = access(tsvpath, F_OK) != 0;
-    run_files f = {o->rundir, fopen(tsvpath, "a"), NULL};
+    run_files f = {o->rundir, fopen(tsvpath, "a"), NULL, NULL};
     if (!f.tsv) {
         vres_error("%s: cannot write: %s", tsvpath, strerror(errno));
         free(tsvpath);
@@ -347,6 +370,12 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     if (fresh)
         fprintf(f.tsv, "# time_s\tstep\tdt_s\tn_fluid\tn_wall\tmass_fluid_kg\tmax_speed_m_s\trho_min_kg_m3\t"
                        "rho_max_kg_m3\twall_s\tparticle_steps_per_s\tn_excluded\tpairs\tinteractions_per_s\n");
+    if (set.couple && open_ledger(&f, o->rundir) != 0) {
+        fclose(f.tsv);
+        free(tsvpath);
+        free_set(&set, 1);
+        return VRES_RUN_FAIL;
+    }
     struct sigaction sa, old_int, old_term;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -361,6 +390,10 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     free_set(&set, 1);
     if (fclose(f.tsv) != 0 && rc == VRES_RUN_OK) {
         vres_error("%s: write failed", tsvpath);
+        rc = VRES_RUN_FAIL;
+    }
+    if (f.ledger && fclose(f.ledger) != 0 && rc == VRES_RUN_OK) {
+        vres_error("%s/ledger.tsv: write failed", o->rundir);
         rc = VRES_RUN_FAIL;
     }
     if (f.excl && fclose(f.excl) != 0 && rc == VRES_RUN_OK) {

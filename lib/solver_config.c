@@ -21,11 +21,13 @@ static const char *const known_params[] = {
     "ShiftAdvALE", "ShiftAdvNCPress", "RigidAlgorithm", "FtPause", "CoefDtMin", "DtIni", "DtMin", "DtFixed",
     "DtAllParticles", "TimeMax", "TimeOut", "RhopOutMin", "RhopOutMax", "MinFluidStop", "periodic",
     "periodic_xinc", "periodic_yinc", "periodic_zinc", "domain_min", "domain_max", "lattice", "modules", "run_t0",
-    "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded", NULL};
+    "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded", "buffsizeh", "overlappingh", "run_mass0",
+    "run_next_id", NULL};
 
 /* 1 when name is in known_params. */
 static int is_known(const char *name)
 {
+    if (!strncmp(name, "run_ledger_", 11)) return 1; /* the coupling's ledger, one per domain (solver_couple.c) */
     for (int i = 0; known_params[i]; i++)
         if (!strcmp(known_params[i], name)) return 1;
     return 0;
@@ -138,9 +140,11 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
     dc->nbuffer = count[VRES_BUFFER];
     dc->nmoving = count[VRES_MOVING];
     dc->nwall = count[VRES_FIXED] + dc->nmoving;
-    if (!dc->nfluid) vres_error("the store has no fluid particles: nothing to run"), *bad = 1;
-    for (int t = 0; t < VRES_NTYPES; t++) /* buffers too: their state comes from the coupling, not run yet */
-        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && count[t])
+    /* a sub-domain may start dry (a refinement box where the flow arrives later) */
+    if (!dc->nfluid && s->ndomains == 1) vres_error("the store has no fluid particles: nothing to run"), *bad = 1;
+    for (int t = 0; t < VRES_NTYPES; t++) /* buffers only where a coupling gives them their state */
+        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && !(t == VRES_BUFFER && s->ndomains > 1) &&
+            count[t])
             vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
                        count[t], vres_ptype_name(t)), *bad = 1;
     return 0;
@@ -223,14 +227,14 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     const vres_params *P = &s->params;
     memset(c, 0, sizeof *c);
     memset(set, 0, sizeof *set);
-    if (s->ndomains != 1) {
-        vres_error("the store has %zu domains: variable resolution is a later issue; this vres-run runs "
-                   "single-domain stores only", s->ndomains);
+    if (s->ndomains > 1 && !s->region) {
+        vres_error("the store has %zu domains but no domain tree (regions, interfaces): only vres-partition's "
+                   "stores run with several domains", s->ndomains);
         return -1;
     }
-    if (s->nboxes) {
-        vres_error("the case defines %zu refinement boxes (<vres>): variable resolution is a later issue; this "
-                   "vres-run runs single-resolution stores only (remove the <vres> section or make it inactive)",
+    if (s->ndomains == 1 && s->nboxes && !s->region) {
+        vres_error("the case defines %zu refinement boxes (<vres>): split it into its domains first "
+                   "(vres-partition STORE | vres-run - -o RUNDIR), or drop them (vres-partition --single)",
                    s->nboxes);
         return -1;
     }
@@ -271,6 +275,9 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     }
     for (size_t k = 0; k < set->n; k++) count_normals(s, c, &set->dom[k]);
     read_options(P, c, &bad);
+    if (s->ndomains > 1 && c->verlet)
+        vres_error("StepAlgorithm=1 (Verlet) with %zu domains: the coupling of variable resolution runs the "
+                   "Symplectic scheme only (StepAlgorithm=2)", s->ndomains), bad = 1;
     for (size_t k = 0; k < set->n; k++)
         if (periodic_box(s, &set->dom[k]) != 0) bad = 1;
     const vres_param *vp = vres_params_find(P, "Visco");

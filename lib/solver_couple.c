@@ -1,25 +1,366 @@
-/* solver_couple.c - where the coupling of variable resolution's domains enters the step
- * sequence (DESIGN section 5; see solver_run.h). The time loop (solver.c) calls these at the
- * two points of each step where the domains meet; with one domain they have nothing to do.
- * The coupling itself (interpolation of the buffers, the interfaces' mass ledger, conversion,
- * creation and deletion through the backends' remove and append) is the next issue: until it
- * is here, vres-run refuses stores with more than one domain (solver_config.c), and these say
- * so rather than run a multi-domain store uncoupled. */
+/* solver_couple.c - the variable-resolution coupling of a run's domains (DESIGN 5; the
+ * per-particle and per-segment physics is kernels/couple.h, run by each backend). The time loop
+ * (solver.c) calls it at two points of each step:
+ *   - after every sort of all domains (the step's start, and mid-step after the predictor):
+ *     each domain's buffer particles take the density and velocity of their donor's fluid
+ *     (vres_couple_buffers); right after an exchange (and at a restart, whose snapshot holds
+ *     them) they already have them, and nothing is done;
+ *   - after the corrector, every domain at the new time (vres_couple_exchange): the interface
+ *     segments accumulate the mass the donors' fluid brings over dt, fluid and buffer particles
+ *     change type by region, particles past a band's outer edge are deleted, each segment
+ *     holding a particle's mass creates one (dp/2 inside it), and after a sort every buffer
+ *     particle takes its donor's values (one without support there is deleted).
+ * The ledger counts every creation, conversion and deletion per domain; ledger.tsv reports it
+ * with the total fluid mass and its drift at each output (vres-run(1)). With one domain every
+ * entry point does nothing. */
+#include "solver_couple.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "log.h"
-#include "solver_run.h"
+#include "store.h"
+
+/* One domain's side of the coupling. */
+typedef struct couple_dom {
+    size_t nseg;          /* segments on the outer edges of its buffer bands */
+    double *pos;          /* [3 nseg] their centres (m) */
+    double *normal;       /* [3 nseg] unit normals, away from this domain's fluid */
+    double *area;         /* [nseg] length (2D, m) or area (3D, m^2) */
+    double *vbox;         /* [3 nseg] velocity of the segments (m/s): zero, no tracking box yet */
+    double *mass;         /* [nseg] accumulated mass (kg) */
+    int32_t *donor;       /* [nseg] donor domain of each segment */
+    float *rho;           /* [nseg] interpolated density at the last update (kg/m^3) */
+    float *vel;           /* [3 nseg] interpolated velocity at the last update (m/s) */
+    uint8_t *state;       /* [nseg] VRES_SEG_* of the last update */
+    size_t *src;          /* [nseg] interface index in the store of each segment */
+    size_t *srci;         /* [nseg] its index in that interface */
+    int32_t mk;           /* mk given to new buffer particles (the domain's fluid mk) */
+    vres_couple_ledger L; /* what happened to its particles since the run began */
+} couple_dom;
+
+struct vres_couple {
+    int ndom;             /* domains */
+    int dim;              /* 2 or 3 */
+    vres_region *reg;     /* [ndom] their regions (a copy of the store's) */
+    vres_donor *donors;   /* [ndom] what each shows as a donor, refreshed after each sort */
+    couple_dom *d;        /* [ndom] */
+    uint64_t next_id;     /* id of the next particle created */
+    double rho0;          /* reference density (kg/m^3), for wall volumes in the flux gate */
+    double mass0;         /* total fluid mass when the run began (kg); < 0 until the first report */
+    int fresh;            /* 1 when the buffers hold their donors' values for the current positions */
+};
+
+/* Collect domain k's segments from the store's interfaces whose receiving domain is k. */
+static void collect_segments(const vres_store *s, int k, couple_dom *cd)
+{
+    size_t n = 0;
+    for (size_t f = 0; f < s->niface; f++)
+        if (s->iface[f].recv == k) n += s->iface[f].n;
+    cd->nseg = n;
+    size_t m = n ? n : 1;
+    cd->pos = vres_xcalloc(3 * m, sizeof *cd->pos);
+    cd->normal = vres_xcalloc(3 * m, sizeof *cd->normal);
+    cd->area = vres_xcalloc(m, sizeof *cd->area);
+    cd->vbox = vres_xcalloc(3 * m, sizeof *cd->vbox);
+    cd->mass = vres_xcalloc(m, sizeof *cd->mass);
+    cd->donor = vres_xcalloc(m, sizeof *cd->donor);
+    cd->rho = vres_xcalloc(m, sizeof *cd->rho);
+    cd->vel = vres_xcalloc(3 * m, sizeof *cd->vel);
+    cd->state = vres_xcalloc(m, sizeof *cd->state);
+    cd->src = vres_xcalloc(m, sizeof *cd->src);
+    cd->srci = vres_xcalloc(m, sizeof *cd->srci);
+    size_t j = 0;
+    for (size_t f = 0; f < s->niface; f++) {
+        const vres_iface *I = &s->iface[f];
+        if (I->recv != k) continue;
+        for (size_t i = 0; i < I->n; i++, j++) {
+            memcpy(&cd->pos[3 * j], &I->pos[3 * i], 3 * sizeof(double));
+            memcpy(&cd->normal[3 * j], &I->normal[3 * i], 3 * sizeof(double));
+            cd->area[j] = I->area[i];
+            cd->mass[j] = I->mass[i];
+            cd->donor[j] = I->donor;
+            cd->src[j] = f;
+            cd->srci[j] = i;
+        }
+    }
+}
+
+vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted)
+{
+    if (s->ndomains < 2) return NULL;
+    vres_couple *C = vres_xcalloc(1, sizeof *C);
+    C->ndom = (int)s->ndomains;
+    C->dim = s->dim;
+    C->rho0 = c->rho0;
+    C->reg = vres_xcalloc(s->ndomains, sizeof *C->reg);
+    memcpy(C->reg, s->region, s->ndomains * sizeof *C->reg);
+    C->donors = vres_xcalloc(s->ndomains, sizeof *C->donors);
+    C->d = vres_xcalloc(s->ndomains, sizeof *C->d);
+    C->next_id = vres_store_next_id(s);
+    C->mass0 = restarted ? vres_params_get(&s->params, "run_mass0", -1) : -1;
+    C->fresh = restarted;
+    for (int k = 0; k < C->ndom; k++) {
+        couple_dom *cd = &C->d[k];
+        const vres_domain *d = &s->dom[k];
+        collect_segments(s, k, cd);
+        cd->mk = 0;
+        for (size_t i = 0; i < d->n; i++)
+            if (vres_type_acts_fluid(d->type[i])) {
+                cd->mk = d->mk[i];
+                break;
+            }
+        if (restarted) vres_couple_ledger_load(s, k, &cd->L);
+    }
+    return C;
+}
+
+void vres_couple_close(vres_couple *C)
+{
+    if (!C) return;
+    for (int k = 0; k < C->ndom; k++) {
+        couple_dom *cd = &C->d[k];
+        free(cd->pos), free(cd->normal), free(cd->area), free(cd->vbox), free(cd->mass), free(cd->donor);
+        free(cd->rho), free(cd->vel), free(cd->state), free(cd->src), free(cd->srci);
+    }
+    free(C->d);
+    free(C->donors);
+    free(C->reg);
+    free(C);
+}
+
+/* Refresh every domain's donor view (after a sort). */
+static void refresh_donors(vres_couple *C, run_set *set)
+{
+    for (int k = 0; k < C->ndom; k++) {
+        set->b[k].donor_view(&set->b[k], &C->donors[k]);
+        C->donors[k].o = vres_liu_defaults(vres_wendland_make(C->dim, set->dom[k].h), C->rho0);
+        C->donors[k].dp = set->dom[k].dp;
+    }
+}
+
+/* Add the events of a pass into domain k's ledger. */
+static void count_events(couple_dom *cd, const size_t *n_ev, const double *m_ev)
+{
+    for (int e = 1; e < VRES_EV_COUNT; e++) {
+        cd->L.n[e] += n_ev[e];
+        cd->L.m[e] += m_ev[e];
+    }
+}
+
+/* Remove the particles of backend b that the last pass marked, when there are any (n_ev the
+ * pass's counts). 0 or -1. */
+static int drop_marked(vres_backend *b, const size_t *n_ev)
+{
+    size_t n = 0;
+    for (int e = 1; e < VRES_EV_COUNT; e++) n += vres_couple_event_deletes(e) ? n_ev[e] : 0;
+    return n ? b->remove(b, b->marks(b)) : 0;
+}
+
+/* New buffer particles of domain k from its segments holding at least its particle mass m (kg):
+ * one per such segment per step, born dp/2 inside it (dp its spacing, m) with the segment's
+ * interpolated density and velocity (the buffer pass then sets both). 0 or -1. */
+static int create(vres_couple *C, vres_backend *b, int k, double dp, double m)
+{
+    couple_dom *cd = &C->d[k];
+    size_t nnew = 0;
+    for (size_t j = 0; j < cd->nseg; j++) nnew += cd->mass[j] >= m;
+    if (!nnew) return 0;
+    vres_domain add;
+    memset(&add, 0, sizeof add);
+    add.parent = -1;
+    vres_domain_reserve(&add, nnew);
+    for (size_t j = 0; j < cd->nseg; j++) {
+        if (cd->mass[j] < m) continue;
+        double x[3];
+        vres_couple_birth(&cd->pos[3 * j], &cd->normal[3 * j], dp, x);
+        size_t i = vres_domain_push(&add, x, VRES_BUFFER, cd->mk);
+        for (int a = 0; a < 3; a++) add.vel[3 * i + a] = cd->vel[3 * j + a];
+        add.rho[i] = cd->rho[j];
+        add.mass_p[i] = m;
+        add.id[i] = C->next_id++;
+        cd->mass[j] -= m;
+        cd->L.created++;
+        cd->L.created_m += m;
+    }
+    int rc = b->append(b, &add);
+    vres_domain_free(&add);
+    return rc;
+}
+
+/* With no coupling: nothing for one domain; several domains must never run uncoupled. */
+static int uncoupled(const run_set *set)
+{
+    if (set->n < 2) return 0;
+    vres_error("%zu domains without their coupling: refusing to run them uncoupled", set->n);
+    return -1;
+}
+
+/* Every domain's buffers from the donors (cells current); with del 1 those without support
+ * are deleted, else they keep their values. 0 or -1. */
+static int buffers(vres_couple *C, run_set *set, int del)
+{
+    refresh_donors(C, set);
+    for (int k = 0; k < C->ndom; k++) {
+        size_t n_ev[VRES_EV_COUNT] = {0};
+        double m_ev[VRES_EV_COUNT] = {0};
+        set->b[k].couple_buffers(&set->b[k], C->reg, C->ndom, k, C->donors, n_ev, m_ev);
+        if (!del) continue;
+        count_events(&C->d[k], n_ev, m_ev);
+        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
+    }
+    return 0;
+}
 
 int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
 {
     (void)c, (void)t;
-    if (set->n < 2) return 0;
-    vres_error("%zu domains: the coupling of their buffers is not implemented yet", set->n);
-    return -1;
+    vres_couple *C = set->couple;
+    if (!C) return uncoupled(set);
+    if (C->fresh) {
+        C->fresh = 0;
+        return 0;
+    }
+    return buffers(C, set, 0);
 }
 
 int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
 {
-    (void)c, (void)t, (void)dt;
-    if (set->n < 2) return 0;
-    vres_error("%zu domains: the exchange of particles between them is not implemented yet", set->n);
-    return -1;
+    (void)c, (void)t;
+    vres_couple *C = set->couple;
+    if (!C) return uncoupled(set);
+    for (int k = 0; k < C->ndom; k++)
+        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    refresh_donors(C, set);
+    /* the segments see every domain at the new time, before any type changes */
+    for (int k = 0; k < C->ndom; k++) {
+        couple_dom *cd = &C->d[k];
+        if (!cd->nseg) continue;
+        vres_segments S = {cd->pos, cd->normal, cd->area, cd->donor, cd->vbox, cd->mass, cd->rho, cd->vel, cd->state};
+        set->b[k].couple_segments(&set->b[k], C->donors, &S, cd->nseg, set->dom[k].dp, dt);
+    }
+    for (int k = 0; k < C->ndom; k++) {
+        size_t n_ev[VRES_EV_COUNT] = {0};
+        double m_ev[VRES_EV_COUNT] = {0};
+        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
+        count_events(&C->d[k], n_ev, m_ev);
+        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
+        if (create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass) != 0) return -1;
+    }
+    for (int k = 0; k < C->ndom; k++)
+        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    if (buffers(C, set, 1) != 0) return -1;
+    C->fresh = 1;
+    return 0;
 }
+
+int vres_couple_start(run_set *set, const run_cfg *c)
+{
+    (void)c;
+    vres_couple *C = set->couple;
+    if (!C) return uncoupled(set);
+    for (int k = 0; k < C->ndom; k++)
+        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    for (int k = 0; k < C->ndom; k++) {
+        size_t n_ev[VRES_EV_COUNT] = {0};
+        double m_ev[VRES_EV_COUNT] = {0};
+        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
+        count_events(&C->d[k], n_ev, m_ev);
+        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
+    }
+    for (int k = 0; k < C->ndom; k++)
+        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    if (buffers(C, set, 1) != 0) return -1;
+    C->fresh = 1;
+    return 0;
+}
+
+/* Names of the ledger's parameters for domain k (counts, masses). */
+static void ledger_names(int k, char *nn, char *mn, size_t len)
+{
+    snprintf(nn, len, "run_ledger_n_D%d", k);
+    snprintf(mn, len, "run_ledger_m_D%d", k);
+}
+
+void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L)
+{
+    memset(L, 0, sizeof *L);
+    char nn[64], mn[64];
+    ledger_names(k, nn, mn, sizeof nn);
+    const vres_param *pn = vres_params_find(&s->params, nn), *pm = vres_params_find(&s->params, mn);
+    if (!pn || !pm || pn->n != VRES_EV_COUNT || pm->n != VRES_EV_COUNT) return;
+    for (int e = 1; e < VRES_EV_COUNT; e++) {
+        L->n[e] = (size_t)pn->v[e];
+        L->m[e] = pm->v[e];
+    }
+    L->created = (size_t)pn->v[0];
+    L->created_m = pm->v[0];
+}
+
+void vres_couple_save(const vres_couple *C, vres_store *s)
+{
+    for (int k = 0; k < C->ndom; k++) {
+        const couple_dom *cd = &C->d[k];
+        for (size_t j = 0; j < cd->nseg; j++) s->iface[cd->src[j]].mass[cd->srci[j]] = cd->mass[j];
+        double vn[VRES_EV_COUNT], vm[VRES_EV_COUNT];
+        vn[0] = (double)cd->L.created, vm[0] = cd->L.created_m; /* slot 0 (VRES_EV_NONE) holds the creations */
+        for (int e = 1; e < VRES_EV_COUNT; e++) vn[e] = (double)cd->L.n[e], vm[e] = cd->L.m[e];
+        char nn[64], mn[64];
+        ledger_names(k, nn, mn, sizeof nn);
+        vres_params_set(&s->params, nn, VRES_EV_COUNT, vn, "", "run");
+        vres_params_set(&s->params, mn, VRES_EV_COUNT, vm, "kg", "run");
+    }
+    vres_params_set1(&s->params, "run_mass0", C->mass0, "kg", "run");
+    vres_params_set1(&s->params, "run_next_id", (double)C->next_id, "", "run");
+    s->next_id = C->next_id;
+}
+
+/* Fluid count and mass (kg) and buffer count of domain d. */
+static void domain_mass(const vres_domain *d, size_t *nf, size_t *nb, double *mf)
+{
+    *nf = *nb = 0;
+    *mf = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        if (vres_type_is_fluid(d->type[i])) (*nf)++, *mf += d->mass_p[i];
+        else if (vres_type_is_buffer(d->type[i])) (*nb)++;
+    }
+}
+
+double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk, FILE *f, double t, long step)
+{
+    double total = 0, bound = 0;
+    size_t nf[64], nb[64];
+    double mf[64], pend[64];
+    int nd = C->ndom < 64 ? C->ndom : 64;
+    for (int k = 0; k < nd; k++) {
+        domain_mass(&s->dom[k], &nf[k], &nb[k], &mf[k]);
+        total += mf[k];
+        pend[k] = 0;
+        for (size_t j = 0; j < C->d[k].nseg; j++) pend[k] += C->d[k].mass[j];
+        bound += (double)C->d[k].nseg * s->dom[k].mass;
+    }
+    if (C->mass0 < 0) C->mass0 = total;
+    double drift = C->mass0 > 0 ? (total - C->mass0) / C->mass0 : 0;
+    if (f) {
+        for (int k = 0; k < nd; k++) {
+            const vres_couple_ledger *L = &C->d[k].L;
+            fprintf(f, "%.9g\t%ld\t%d\t%.6g\t%zu\t%zu\t%.9g\t%zu\t%.9g\t%zu\t%zu\t%zu\t%.9g\t%zu\t%.9g\t%zu\t%.9g\t%.9g\t%.9g\t%.6g\n",
+                    t, step, k, dtk ? dtk[k] : 0.0, nf[k], nb[k], mf[k], L->created, L->created_m, L->n[VRES_EV_TO_FLUID],
+                    L->n[VRES_EV_TO_BUFFER], L->n[VRES_EV_DEL_BUFFER], L->m[VRES_EV_DEL_BUFFER], L->n[VRES_EV_DEL_FLUID],
+                    L->m[VRES_EV_DEL_FLUID], L->n[VRES_EV_NOSUPPORT], L->m[VRES_EV_NOSUPPORT], pend[k], total, drift);
+        }
+        fflush(f);
+    }
+    if (C->mass0 > 0 && fabs(total - C->mass0) > bound)
+        vres_warn("t = %.6g s, step %ld: total fluid mass %.9g kg drifted %+.3g%% since the start, more than one "
+                  "particle mass per interface segment (%.3g kg)", t, step, total, 100 * drift, bound);
+    return drift;
+}
+
+/* The header of ledger.tsv. */
+const char vres_couple_ledger_header[] =
+    "# time_s\tstep\tdomain\tdt_own_s\tn_fluid\tn_buffer\tfluid_mass_kg\tcreated\tcreated_kg\tbuffer_to_fluid\tfluid_to_buffer"
+    "\tdeleted_buffer\tdeleted_buffer_kg\tdeleted_fluid\tdeleted_fluid_kg\tdeleted_nosupport\tdeleted_nosupport_kg"
+    "\tsegment_mass_kg\ttotal_fluid_mass_kg\ttotal_mass_drift\n";

@@ -395,6 +395,60 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
     x->mark = vres_xcalloc(x->cap + 1, 1);
 }
 
+/* ---- the variable-resolution coupling (kernels/couple.h over the store's arrays) ---- */
+
+/* Count the events the marks hold (as kernels/couple.h's VRES_EV_*) for the n slots, with their
+ * mass, then turn the marks into remove's: 1 for an event that deletes. */
+static void cpu_count_events(cpu_ctx *x, size_t *n_ev, double *m_ev)
+{
+    const vres_domain *d = x->d;
+    uint8_t *ev = x->mark;
+    for (size_t i = 0; i < d->n; i++) {
+        const int e = ev[i];
+        if (e != VRES_EV_NONE) n_ev[e]++, m_ev[e] += d->mass_p[i];
+        ev[i] = (uint8_t)vres_couple_event_deletes(e);
+    }
+}
+
+/* This domain as a donor: the store's arrays and the cell list of the last sort. */
+static void cpu_donor_view(vres_backend *b, vres_donor *v)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    v->cells = x->cells;
+    v->pos = d->pos, v->vel = d->vel, v->rho = d->rho, v->mass = d->mass_p, v->type = d->type;
+}
+
+/* Classify every particle by region; events counted, deletions marked. */
+static void cpu_couple_classify(vres_backend *b, const vres_region *reg, int nreg, int k, size_t *n_ev, double *m_ev)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    vres_couple_classify_loop_cpu(d->n, reg, nreg, k, x->c.dim, d->pos, d->type, x->mark);
+    cpu_count_events(x, n_ev, m_ev);
+}
+
+/* Buffer values from the donors; particles without support counted and marked. */
+static void cpu_couple_buffers(vres_backend *b, const vres_region *reg, int nreg, int k, const vres_donor *donors,
+                               size_t *n_ev, double *m_ev)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    memset(x->mark, 0, d->n);
+    vres_couple_buffer_loop_cpu(d->n, reg, nreg, k, x->c.dim, donors, d->pos, d->type, d->vel, d->rho, x->mark);
+    cpu_count_events(x, n_ev, m_ev);
+}
+
+/* Segment fluxes from the donors, with this domain's walls for the wall gate. */
+static void cpu_couple_segments(vres_backend *b, const vres_donor *donors, const vres_segments *S, size_t nseg,
+                                double dp, double dt)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    vres_couple_walls w = {x->cells, d->pos, d->type};
+    vres_couple_segment_loop_cpu(nseg, donors, *S, w, dp, dt);
+}
+
 int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c, const run_dom *dc)
 {
     cpu_ctx *x = vres_xcalloc(1, sizeof *x);
@@ -438,6 +492,10 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     b->remove = cpu_remove;
     b->append = cpu_append;
     b->count_pairs = cpu_count_pairs;
+    b->donor_view = cpu_donor_view;
+    b->couple_classify = cpu_couple_classify;
+    b->couple_buffers = cpu_couple_buffers;
+    b->couple_segments = cpu_couple_segments;
     b->close = cpu_close;
     return 0;
 }

@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "../kernels/couple.h"
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
 #include "solver_motion.h"
@@ -153,6 +154,25 @@ typedef struct vres_backend {
     int (*append)(struct vres_backend *b, const vres_domain *src);
     /* Ordered neighbour pairs (a, b != a) within 2h now (for the interactions-per-second figure). */
     size_t (*count_pairs)(struct vres_backend *b);
+
+    /* The variable-resolution coupling (solver_couple.c, kernels/couple.h); NULL in a backend
+     * that does not run it (the run then refuses several domains). */
+    /* This domain as a donor: its arrays and cell list in the backend's memory space, current
+     * after the last sort (the caller sets v->o and v->dp). */
+    void (*donor_view)(struct vres_backend *b, vres_donor *v);
+    /* Classify every fluid and buffer particle by region for domain k of the nreg regions reg
+     * (types changed in place); the events' counts and masses (kg) are added to n_ev and m_ev
+     * [VRES_EV_COUNT], and the marks (marks) set to 1 for the particles to delete. */
+    void (*couple_classify)(struct vres_backend *b, const vres_region *reg, int nreg, int k, size_t *n_ev,
+                            double *m_ev);
+    /* Every buffer particle takes its donor's density and velocity (donors[nreg], cells current);
+     * those without support keep theirs, are counted (VRES_EV_NOSUPPORT) and marked. */
+    void (*couple_buffers)(struct vres_backend *b, const vres_region *reg, int nreg, int k, const vres_donor *donors,
+                           size_t *n_ev, double *m_ev);
+    /* Update the segments S (host arrays of nseg) from the donors over dt (s), with this
+     * domain's walls (cells current) for the wall gate; dp is this domain's spacing (m). */
+    void (*couple_segments)(struct vres_backend *b, const vres_donor *donors, const vres_segments *S, size_t nseg,
+                            double dp, double dt);
     /* Free everything the backend holds (b itself is the caller's). */
     void (*close)(struct vres_backend *b);
 } vres_backend;

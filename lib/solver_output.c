@@ -15,6 +15,7 @@
 #include "field.h"
 #include "fileio.h"
 #include "log.h"
+#include "solver_couple.h"
 #include "solver_run.h"
 
 /* Seconds of wall-clock time since an arbitrary origin. */
@@ -134,6 +135,7 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     size_t pairs = 0, n = 0;
     for (size_t k = 0; k < set->n; k++) pairs += set->b[k].count_pairs(&set->b[k]), n += set->b[k].n;
     if (download_all(s, set) != 0) return -1;
+    if (set->couple) vres_couple_save(set->couple, s);
     r->next_snap++;
     char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
     int rc = write_snapshot(s, c, r, path, t, step);
@@ -150,6 +152,13 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
         vres_error("%s/run.tsv: write failed", f->dir);
         return -1;
     }
+    if (set->couple) {
+        vres_couple_report(set->couple, s, set->dt, f->ledger, t, step);
+        if (f->ledger && ferror(f->ledger)) {
+            vres_error("%s/ledger.tsv: write failed", f->dir);
+            return -1;
+        }
+    }
     vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3",
                r->next_snap - 1, t, step, dt, st.vmax, st.rho_lo, st.rho_hi);
     clk->last = vres_run_wall_now();
@@ -162,6 +171,7 @@ int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run
                         run_clock *clk, double t, long step)
 {
     if (download_all(s, set) != 0) return -1;
+    if (set->couple) vres_couple_save(set->couple, s);
     char *path = vres_xasprintf("%s/checkpoint.h5", dir);
     int rc = write_snapshot(s, c, r, path, t, step);
     if (!rc) vres_debug("checkpoint at t = %.6g s, step %ld: %s", t, step, path);
@@ -381,7 +391,9 @@ int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap)
     int rc = 0;
     if (restart) {
         char *ex = vres_xasprintf("%s/excluded.tsv", dir), *lg = vres_xasprintf("%s/snap_last_good.h5", dir);
-        rc = truncate_table(tsv, 2, step) || truncate_table(ex, 2, step);
+        char *ld = vres_xasprintf("%s/ledger.tsv", dir);
+        rc = truncate_table(tsv, 2, step) || truncate_table(ex, 2, step) || truncate_table(ld, 2, step);
+        free(ld);
         if (!rc && unlink(lg) == 0) vres_info("removed %s (the restart replaces it)", lg);
         int removed = 0;
         for (int k = next_snap; !rc; k++) {

@@ -27,16 +27,21 @@ typedef struct run_files {
     const char *dir;    /* the run directory */
     FILE *tsv;          /* run.tsv, open for appending */
     FILE *excl;         /* excluded.tsv, opened at the first exclusion (NULL until then) */
+    FILE *ledger;       /* ledger.tsv, open for appending; NULL with one domain */
 } run_files;
 
 /* The domains of a run, in the store's order: each one's configuration, the backend that holds
  * its particles, and what the step sequence keeps of it between phases. */
+struct vres_couple;
+typedef struct vres_couple vres_couple; /* the coupling of a run's domains (solver_couple.h) */
+
 typedef struct run_set {
     size_t n;             /* domains */
     run_dom *dom;         /* [n] each domain's configuration */
     vres_backend *b;      /* [n] the backend holding each domain's particles */
     double *dt;           /* [n] each domain's own stable time step at the last force evaluation (s) */
     size_t *nout;         /* [n] each domain's particles outside its box at the last check */
+    vres_couple *couple;  /* the coupling of the domains (solver_couple.c); NULL with one domain */
 } run_set;
 
 /* The run's progress between outputs. */

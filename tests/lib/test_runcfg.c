@@ -92,10 +92,10 @@ START_TEST(buffers_and_two_domains_refused)
     ck_assert_int_eq(vres_run_read_config(s, &o, &c, &set), -1);
     ck_assert_uint_eq(set.n, 0);
     vres_store_free(s);
-    /* the hooks refuse to run two domains uncoupled */
+    /* without their coupling the hooks refuse to run two domains */
     run_dom dom[2];
     memset(dom, 0, sizeof dom);
-    run_set two = {2, dom, NULL, NULL, NULL};
+    run_set two = {2, dom, NULL, NULL, NULL, NULL};
     ck_assert_int_eq(vres_couple_buffers(&two, &c, 0), -1);
     ck_assert_int_eq(vres_couple_exchange(&two, &c, 0, 1e-4), -1);
 }

@@ -1,0 +1,50 @@
+/* solver_couple.h - the variable-resolution coupling of a run's domains (solver_couple.c): its
+ * state, the start of a new run, and the ledger. The two calls the step sequence makes every
+ * step, vres_couple_buffers and vres_couple_exchange, are declared in solver_run.h. Internal
+ * to libvres. */
+#ifndef VRES_SOLVER_COUPLE_H
+#define VRES_SOLVER_COUPLE_H
+
+#include <stdio.h>
+
+#include "../kernels/couple.h"
+#include "solver_run.h"
+#include "store.h"
+
+/* What happened to one domain's particles since the run began (cumulative; kept in every
+ * snapshot's parameters so that a restart continues the counts). */
+typedef struct vres_couple_ledger {
+    size_t n[VRES_EV_COUNT];  /* particles per classification event (VRES_EV_*; slot 0 unused) */
+    double m[VRES_EV_COUNT];  /* their mass (kg) */
+    size_t created;           /* buffer particles born at the segments */
+    double created_m;         /* their mass (kg) */
+} vres_couple_ledger;
+
+/* The header line of ledger.tsv (names and units of its columns). */
+extern const char vres_couple_ledger_header[];
+
+/* The coupling of store s's domains (its regions, interfaces and, on a restart, the ledger
+ * and the start's total mass), or NULL for a store with one domain. */
+vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted);
+/* Free it (NULL is fine). */
+void vres_couple_close(vres_couple *C);
+
+/* Before the first step of a new run (not a restart, whose snapshot holds the coupled state):
+ * classify every domain's fluid and buffer particles by region and give the buffers their
+ * donors' values. Nothing with one domain. 0, or -1 after printing why. */
+int vres_couple_start(run_set *set, const run_cfg *c);
+
+/* Put the segments' accumulated masses, the ledger, the start's total mass and the next free
+ * id into the store (before a snapshot is written). */
+void vres_couple_save(const vres_couple *C, vres_store *s);
+/* Domain k's ledger from the store's parameters (zero when absent). */
+void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L);
+
+/* Write one ledger.tsv line per domain for the state the store holds now (just downloaded):
+ * its own stable time step at the last force evaluation (dtk[k], s; the run takes the
+ * smallest), fluid and buffer counts, fluid mass, the ledger, the mass waiting in the segments, the total
+ * fluid mass and its relative drift since the run began (f NULL: nothing written). Warns when
+ * the total drifted by more than one particle mass per interface segment. Returns the drift. */
+double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk, FILE *f, double t, long step);
+
+#endif
