@@ -226,13 +226,35 @@ int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
     return buffers(C, set, 0);
 }
 
+/* Sort every domain by cell. 0 or -1. */
+static int sort_domains(vres_couple *C, run_set *set)
+{
+    for (int k = 0; k < C->ndom; k++)
+        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    return 0;
+}
+
+/* Classify every domain's particles by region (type changes, deletions counted and done); with
+ * births 1 the segments holding a particle's mass then create their particles. 0 or -1. */
+static int classify_domains(vres_couple *C, run_set *set, int births)
+{
+    for (int k = 0; k < C->ndom; k++) {
+        size_t n_ev[VRES_EV_COUNT] = {0};
+        double m_ev[VRES_EV_COUNT] = {0};
+        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
+        count_events(&C->d[k], n_ev, m_ev);
+        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
+        if (births && create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass) != 0) return -1;
+    }
+    return 0;
+}
+
 int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
 {
     (void)c, (void)t;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    if (sort_domains(C, set) != 0) return -1;
     refresh_donors(C, set);
     /* the segments see every domain at the new time, before any type changes */
     for (int k = 0; k < C->ndom; k++) {
@@ -241,17 +263,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
         vres_segments S = {cd->pos, cd->normal, cd->area, cd->donor, cd->vbox, cd->mass, cd->rho, cd->vel, cd->state};
         set->b[k].couple_segments(&set->b[k], C->donors, &S, cd->nseg, set->dom[k].dp, dt);
     }
-    for (int k = 0; k < C->ndom; k++) {
-        size_t n_ev[VRES_EV_COUNT] = {0};
-        double m_ev[VRES_EV_COUNT] = {0};
-        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
-        count_events(&C->d[k], n_ev, m_ev);
-        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
-        if (create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass) != 0) return -1;
-    }
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
-    if (buffers(C, set, 1) != 0) return -1;
+    if (classify_domains(C, set, 1) != 0 || sort_domains(C, set) != 0 || buffers(C, set, 1) != 0) return -1;
     C->fresh = 1;
     return 0;
 }
@@ -261,18 +273,9 @@ int vres_couple_start(run_set *set, const run_cfg *c)
     (void)c;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
-    for (int k = 0; k < C->ndom; k++) {
-        size_t n_ev[VRES_EV_COUNT] = {0};
-        double m_ev[VRES_EV_COUNT] = {0};
-        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
-        count_events(&C->d[k], n_ev, m_ev);
-        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
-    }
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
-    if (buffers(C, set, 1) != 0) return -1;
+    if (sort_domains(C, set) != 0 || classify_domains(C, set, 0) != 0 || sort_domains(C, set) != 0 ||
+        buffers(C, set, 1) != 0)
+        return -1;
     C->fresh = 1;
     return 0;
 }
