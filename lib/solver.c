@@ -243,6 +243,9 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s%s", t, step - step_start,
                   vres_run_wall_now() - clk.start, r->next_snap - nsnap0, f->dir,
                   r->nexcluded > 0 ? " (particles excluded: see excluded.tsv)" : "");
+    if (rc == VRES_RUN_OK && set->couple)
+        vres_info("coupling of the %zu domains: %.3g s, %.1f%% of the time loop", set->n, vres_couple_wall(set->couple),
+                  100 * vres_couple_wall(set->couple) / fmax(vres_run_wall_now() - clk.start, 1e-9));
     free(m.mv0);
     free(m.mv);
     return rc;

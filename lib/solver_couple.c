@@ -51,7 +51,13 @@ struct vres_couple {
     double rho0;          /* reference density (kg/m^3), for wall volumes in the flux gate */
     double mass0;         /* total fluid mass when the run began (kg); < 0 until the first report */
     int fresh;            /* 1 when the buffers hold their donors' values for the current positions */
+    double wall;          /* wall-clock time spent in the coupling since it was opened (s) */
 };
+
+double vres_couple_wall(const vres_couple *C)
+{
+    return C ? C->wall : 0;
+}
 
 /* Collect domain k's segments from the store's interfaces whose receiving domain is k. */
 static void collect_segments(const vres_store *s, int k, couple_dom *cd)
@@ -223,7 +229,10 @@ int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
         C->fresh = 0;
         return 0;
     }
-    return buffers(C, set, 0);
+    double t0 = vres_run_wall_now();
+    int rc = buffers(C, set, 0);
+    C->wall += vres_run_wall_now() - t0;
+    return rc;
 }
 
 /* Sort every domain by cell. 0 or -1. */
@@ -254,6 +263,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     (void)c, (void)t;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
+    double t0 = vres_run_wall_now();
     if (sort_domains(C, set) != 0) return -1;
     refresh_donors(C, set);
     /* the segments see every domain at the new time, before any type changes */
@@ -265,6 +275,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     }
     if (classify_domains(C, set, 1) != 0 || sort_domains(C, set) != 0 || buffers(C, set, 1) != 0) return -1;
     C->fresh = 1;
+    C->wall += vres_run_wall_now() - t0;
     return 0;
 }
 

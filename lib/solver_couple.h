@@ -28,6 +28,9 @@ extern const char vres_couple_ledger_header[];
 vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted);
 /* Free it (NULL is fine). */
 void vres_couple_close(vres_couple *C);
+/* Wall-clock seconds the coupling has taken so far (its interpolations, fluxes, type changes,
+ * creations, deletions and the sorts they need); 0 for NULL. */
+double vres_couple_wall(const vres_couple *C);
 
 /* Before the first step of a new run (not a restart, whose snapshot holds the coupled state):
  * classify every domain's fluid and buffer particles by region and give the buffers their
