@@ -124,8 +124,8 @@ static int write_snapshot(vres_store *s, const run_cfg *c, const run_resume *r, 
     return vres_store_write(s, path);
 }
 
-/* Write snapshot number r->next_snap and its run.tsv line from the backends' state. 0, or -1
- * after printing why. */
+/* Write snapshot number r->next_snap, its run.tsv line and, coupled, its ledger.tsv lines from
+ * the backends' state. 0, or -1 after printing why. */
 int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, const run_files *f,
                     run_clock *clk, double t, long step, double dt)
 {
@@ -135,7 +135,16 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     size_t pairs = 0, n = 0;
     for (size_t k = 0; k < set->n; k++) pairs += set->b[k].count_pairs(&set->b[k]), n += set->b[k].n;
     if (download_all(s, set) != 0) return -1;
-    if (set->couple) vres_couple_save(set->couple, s);
+    if (set->couple) {
+        /* the ledger line first: the first report fixes the start's total mass (run_mass0),
+           which the snapshot must hold so that a restart from it measures the drift alike */
+        vres_couple_report(set->couple, s, set->dt, f->ledger, t, step);
+        if (f->ledger && ferror(f->ledger)) {
+            vres_error("%s/ledger.tsv: write failed", f->dir);
+            return -1;
+        }
+        vres_couple_save(set->couple, s);
+    }
     r->next_snap++;
     char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
     int rc = write_snapshot(s, c, r, path, t, step);
@@ -151,13 +160,6 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     if (ferror(f->tsv)) {
         vres_error("%s/run.tsv: write failed", f->dir);
         return -1;
-    }
-    if (set->couple) {
-        vres_couple_report(set->couple, s, set->dt, f->ledger, t, step);
-        if (f->ledger && ferror(f->ledger)) {
-            vres_error("%s/ledger.tsv: write failed", f->dir);
-            return -1;
-        }
     }
     vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3",
                r->next_snap - 1, t, step, dt, st.vmax, st.rho_lo, st.rho_hi);
