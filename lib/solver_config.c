@@ -233,9 +233,9 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
         return -1;
     }
     if (s->ndomains == 1 && s->nboxes && !s->region) {
-        vres_error("the case defines %zu refinement boxes (<vres>): split it into its domains first "
-                   "(vres-partition STORE | vres-run - -o RUNDIR), or drop them (vres-partition --single)",
-                   s->nboxes);
+        vres_error("the case defines %zu refinement box%s (<vres>): split it into its domains first "
+                   "(vres-partition STORE | vres-run - -o RUNDIR), or drop %s (vres-partition --single)",
+                   s->nboxes, s->nboxes == 1 ? "" : "es", s->nboxes == 1 ? "it" : "them");
         return -1;
     }
     c->dim = s->dim;
