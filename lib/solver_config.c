@@ -232,6 +232,11 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
                    "stores run with several domains", s->ndomains);
         return -1;
     }
+    if (s->ndomains > 1 && !s->niface) { /* no segments: no buffer particle would ever be created */
+        vres_error("the store has %zu domains and their regions but no /Interfaces (the mass segments of the buffer "
+                   "bands): only vres-partition's stores run with several domains", s->ndomains);
+        return -1;
+    }
     if (s->ndomains == 1 && s->nboxes && !s->region) {
         vres_error("the case defines %zu refinement box%s (<vres>): split it into its domains first "
                    "(vres-partition STORE | vres-run - -o RUNDIR), or drop %s (vres-partition --single)",
