@@ -147,6 +147,11 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
             count[t])
             vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
                        count[t], vres_ptype_name(t)), *bad = 1;
+    /* the coupling's regions and segments stand still (no box velocity): a box that should follow
+       its body would silently stay behind */
+    if (d->tracking_mk >= 0)
+        vres_error("domain D%zu follows mkbound %d (<tracking>): refinement boxes that move are not implemented yet",
+                   k, d->tracking_mk), *bad = 1;
     return 0;
 }
 

@@ -2,12 +2,12 @@
 # vres-run on variable-resolution input it must refuse (AddressSanitizer build): several
 # domains without their domain tree (no region boxes, region boxes in some domains only, no
 # interfaces), a corrupt /Interfaces (a count that is not the datasets' rows, a NaN position, a
-# non-unit normal, domains that are not parent and child), a restart from a partition store
-# (no snapshot), Verlet with two domains, and --device cuda with two domains. Each gets one
-# message naming the object, exit 1, and nothing in the run directory. The stores are
-# vres-partition's of cases/hydrostatic_vres2d, edited with h5py (so that vres's own writer,
-# which checks what it writes, is bypassed) or with the parameter setter of
-# tests/lib/test_solver.c.
+# non-unit normal, domains that are not parent and child), a box that tracks a body, a
+# restart from a partition store (no snapshot), Verlet with two domains, and --device cuda
+# with two domains. Each gets one message naming the object, exit 1, and nothing in the run
+# directory. The stores are vres-partition's of cases/hydrostatic_vres2d, edited with h5py (so
+# that vres's own writer, which checks what it writes, is bypassed) or with the parameter
+# setter of tests/lib/test_solver.c.
 source "$(dirname "$0")/../harness.sh"
 RUN=$ASAN/vres-run
 CASE=$CASES/hydrostatic_vres2d/hydrostatic_vres2d_Def.xml
@@ -70,6 +70,10 @@ a['count'] = np.uint64(int(a['count']) + 1)"
     edit normal "f['Interfaces/I0/Normal'][2] = [0.5, 0.0, 0.0]"
     refused 1 'normal\.h5: /Interfaces/I0/Normal: segment 2 is not a unit vector' "non-unit interface normal" \
         "$T/normal.h5"
+    # a box that follows a body: the coupling's boxes stand still, so it would stay behind
+    edit tracking "f['Domains/D1'].attrs['tracking_mk'] = np.int32(0)"
+    refused 1 'domain D1 follows mkbound 0 \(<tracking>\): refinement boxes that move are not implemented yet' \
+        "a tracking box" "$T/tracking.h5"
     edit donor "a = f['Interfaces/I0'].attrs
 a['donor'] = a['receiving']"
     refused 1 'donor\.h5: /Interfaces/I0: domains ([0-9]+) and \1 are not parent and child' \
