@@ -63,16 +63,17 @@ typedef struct out_stats {
     double rho_lo;  /* smallest fluid density (kg/m^3) */
     double rho_hi;  /* largest fluid density (kg/m^3) */
     size_t nfluid;  /* fluid particles */
-    size_t nwall;   /* wall particles */
+    size_t nwall;   /* wall particles (fixed, moving, floating) */
 } out_stats;
 
 /* Add domain d's fluid mass, largest speed, density range and counts to o. */
 static void stats_add(out_stats *o, const vres_domain *d)
 {
     double m = 0, v2 = 0, lo = INFINITY, hi = -INFINITY;
-    size_t nf = 0;
-#pragma omp parallel for reduction(+ : m, nf) reduction(max : v2, hi) reduction(min : lo) schedule(static)
+    size_t nf = 0, nw = 0;
+#pragma omp parallel for reduction(+ : m, nf, nw) reduction(max : v2, hi) reduction(min : lo) schedule(static)
     for (size_t i = 0; i < d->n; i++) {
+        nw += vres_type_is_wall(d->type[i]); /* not the buffers: ledger.tsv counts them */
         if (!vres_type_is_fluid(d->type[i])) continue;
         nf++;
         m += d->mass_p[i];
@@ -87,7 +88,7 @@ static void stats_add(out_stats *o, const vres_domain *d)
     o->rho_lo = fmin(o->rho_lo, lo);
     o->rho_hi = fmax(o->rho_hi, hi);
     o->nfluid += nf;
-    o->nwall += d->n - nf;
+    o->nwall += nw;
 }
 
 /* The figures of the run.tsv line over every domain of s. */

@@ -95,6 +95,11 @@ for k in 0 1; do
         [ "$got" = "$want" -a "${got% *}" -gt 0 -a "${got#* }" -gt 0 ]
 done
 
+# run.tsv's n_wall counts the walls (types 2, 3, 4) of every domain, not the buffers
+nw=$(for d in D0 D1; do values "/Domains/$d/Type" "$last"; done | awk '$1 >= 2 && $1 <= 4 {n++} END {print n + 0}')
+check "run.tsv's last n_wall is the snapshot's wall count ($nw)" \
+    [ "$(grep -v '^#' "$T/run/run.tsv" | tail -1 | cut -f5)" = "$nw" -a "$nw" -gt 0 ]
+
 # ---- at rest: speed below 1% of sqrt(g H), H the case's water depth (its variable H), g from
 # the store. The criterion holds once the start-up transient has decayed: before about 0.35 s
 # the single-resolution tank itself (vres-partition --single of this case) exceeds it, by up
