@@ -226,13 +226,35 @@ int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
     return buffers(C, set, 0);
 }
 
+/* Sort every domain by cell. 0 or -1. */
+static int sort_domains(vres_couple *C, run_set *set)
+{
+    for (int k = 0; k < C->ndom; k++)
+        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    return 0;
+}
+
+/* Classify every domain's particles by region (type changes, deletions counted and done); with
+ * births 1 the segments holding a particle's mass then create their particles. 0 or -1. */
+static int classify_domains(vres_couple *C, run_set *set, int births)
+{
+    for (int k = 0; k < C->ndom; k++) {
+        size_t n_ev[VRES_EV_COUNT] = {0};
+        double m_ev[VRES_EV_COUNT] = {0};
+        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
+        count_events(&C->d[k], n_ev, m_ev);
+        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
+        if (births && create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass) != 0) return -1;
+    }
+    return 0;
+}
+
 int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
 {
     (void)c, (void)t;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
+    if (sort_domains(C, set) != 0) return -1;
     refresh_donors(C, set);
     /* the segments see every domain at the new time, before any type changes */
     for (int k = 0; k < C->ndom; k++) {
@@ -241,17 +263,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
         vres_segments S = {cd->pos, cd->normal, cd->area, cd->donor, cd->vbox, cd->mass, cd->rho, cd->vel, cd->state};
         set->b[k].couple_segments(&set->b[k], C->donors, &S, cd->nseg, set->dom[k].dp, dt);
     }
-    for (int k = 0; k < C->ndom; k++) {
-        size_t n_ev[VRES_EV_COUNT] = {0};
-        double m_ev[VRES_EV_COUNT] = {0};
-        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
-        count_events(&C->d[k], n_ev, m_ev);
-        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
-        if (create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass) != 0) return -1;
-    }
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
-    if (buffers(C, set, 1) != 0) return -1;
+    if (classify_domains(C, set, 1) != 0 || sort_domains(C, set) != 0 || buffers(C, set, 1) != 0) return -1;
     C->fresh = 1;
     return 0;
 }
@@ -261,18 +273,9 @@ int vres_couple_start(run_set *set, const run_cfg *c)
     (void)c;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
-    for (int k = 0; k < C->ndom; k++) {
-        size_t n_ev[VRES_EV_COUNT] = {0};
-        double m_ev[VRES_EV_COUNT] = {0};
-        set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
-        count_events(&C->d[k], n_ev, m_ev);
-        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
-    }
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], 0) != 0) return -1;
-    if (buffers(C, set, 1) != 0) return -1;
+    if (sort_domains(C, set) != 0 || classify_domains(C, set, 0) != 0 || sort_domains(C, set) != 0 ||
+        buffers(C, set, 1) != 0)
+        return -1;
     C->fresh = 1;
     return 0;
 }
@@ -317,14 +320,22 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
     s->next_id = C->next_id;
 }
 
-/* Fluid count and mass (kg) and buffer count of domain d. */
-static void domain_mass(const vres_domain *d, size_t *nf, size_t *nb, double *mf)
+/* Fluid count and mass (kg) and buffer count of domain k (particles d). The mass counts only the
+ * fluid domain k owns: with overlappingh > 0 the parent keeps fluid inside a child's box, where
+ * the child's fluid is the flow, so that fluid is counted once, as the child's. */
+static void domain_mass(const vres_couple *C, int k, const vres_domain *d, size_t *nf, size_t *nb, double *mf)
 {
     *nf = *nb = 0;
     *mf = 0;
     for (size_t i = 0; i < d->n; i++) {
-        if (vres_type_is_fluid(d->type[i])) (*nf)++, *mf += d->mass_p[i];
-        else if (vres_type_is_buffer(d->type[i])) (*nb)++;
+        if (vres_type_is_buffer(d->type[i])) (*nb)++;
+        if (!vres_type_is_fluid(d->type[i])) continue;
+        (*nf)++;
+        int owned = 1;
+        for (int j = k + 1; owned && j < C->ndom; j++)
+            if (C->reg[j].parent == k && vres_region_in_box(C->reg[j].fluid_lo, C->reg[j].fluid_hi, 0, &d->pos[3 * i], C->dim))
+                owned = 0;
+        if (owned) *mf += d->mass_p[i];
     }
 }
 
@@ -335,7 +346,7 @@ double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk
     double mf[64], pend[64];
     int nd = C->ndom < 64 ? C->ndom : 64;
     for (int k = 0; k < nd; k++) {
-        domain_mass(&s->dom[k], &nf[k], &nb[k], &mf[k]);
+        domain_mass(C, k, &s->dom[k], &nf[k], &nb[k], &mf[k]);
         total += mf[k];
         pend[k] = 0;
         for (size_t j = 0; j < C->d[k].nseg; j++) pend[k] += C->d[k].mass[j];

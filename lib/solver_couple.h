@@ -42,8 +42,9 @@ void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L);
 
 /* Write one ledger.tsv line per domain for the state the store holds now (just downloaded):
  * its own stable time step at the last force evaluation (dtk[k], s; the run takes the
- * smallest), fluid and buffer counts, fluid mass, the ledger, the mass waiting in the segments, the total
- * fluid mass and its relative drift since the run began (f NULL: nothing written). Warns when
+ * smallest), fluid and buffer counts, the mass of the fluid it owns (a parent's fluid inside a
+ * child's box, kept with overlappingh > 0, counts as the child's), the ledger, the mass waiting
+ * in the segments, the total owned fluid mass and its relative drift since the run began (f NULL: nothing written). Warns when
  * the total drifted by more than one particle mass per interface segment. Returns the drift. */
 double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk, FILE *f, double t, long step);
 

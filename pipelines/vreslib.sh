@@ -112,21 +112,24 @@ run_complete() {
 check_usage() { printf 'usage: %s\n' "$1" >&2; exit 2; }
 
 # check_args SYNOPSIS "$@": parse the options common to every check:
-#   [--dp DP] [--threads N] [--tmax T] [--set NAME=VALUE]... [-o RUNDIR] [RUNDIR]
-# Sets DP, THREADS, TMAX, SETS (the --set options, passed on to vres-gencase: a variable,
+#   [--dp DP] [--threads N] [--tmax T] [--set NAME=VALUE]... [--vres | --single] [-o RUNDIR] [RUNDIR]
+# Sets DP, THREADS, TMAX, PART (vres or single: run_case puts the store through vres-partition,
+# with --single dropping the refinement boxes), SETS (the --set options, passed on to vres-gencase: a variable,
 # constant or parameter of the case, e.g. --set Boundary=2), RUNDIR (a run directory to
 # read, or where to run), RUN_NEEDED
 # (1 when RUNDIR holds no run.tsv yet, so the check must run the case) and WORK (a temporary
 # directory for intermediate files, removed at exit). Without a RUNDIR the run goes to WORK.
 check_args() {
     local syn=$1 given=0; shift
-    DP="" THREADS="" TMAX="" RUNDIR="" RUN_NEEDED=0 SETS=()
+    DP="" THREADS="" TMAX="" RUNDIR="" RUN_NEEDED=0 SETS=() PART=""
     while [ $# -gt 0 ]; do
         case $1 in
             --set) [ $# -ge 2 ] || check_usage "$syn"; SETS+=(--set "$2"); shift 2 ;;
             --dp) [ $# -ge 2 ] || check_usage "$syn"; DP=$2; shift 2 ;;
             --threads) [ $# -ge 2 ] || check_usage "$syn"; THREADS=$2; shift 2 ;;
             --tmax) [ $# -ge 2 ] || check_usage "$syn"; TMAX=$2; shift 2 ;;
+            --single) PART=single; shift ;;
+            --vres) PART=vres; shift ;;
             -o) [ -z "$RUNDIR" ] && [ $# -ge 2 ] || check_usage "$syn"; RUNDIR=$2; shift 2 ;;
             -h|--help) printf 'usage: %s\n' "$syn"; exit 0 ;;
             -*) note "unknown option $1"; check_usage "$syn" ;;
@@ -157,6 +160,12 @@ run_case() {
     local xml=$1; shift
     "$VRES_BIN/vres-gencase" -q ${DP:+--dp "$DP"} "${SETS[@]}" "$@" "$xml" -o "$WORK/case.h5" ||
         die "vres-gencase failed on $xml"
+    # --vres: the case's refinement boxes as domains; --single: the boxes dropped (one domain)
+    if [ -n "$PART" ]; then
+        "$VRES_BIN/vres-partition" -q $([ "$PART" = single ] && echo --single) "$WORK/case.h5" -o "$WORK/parts.h5" ||
+            die "vres-partition failed on $xml"
+        mv "$WORK/parts.h5" "$WORK/case.h5"
+    fi
     note "running $(basename "$xml") at dp ${DP:-as in the case} into $RUNDIR"
     "$VRES_BIN/vres-run" -q ${THREADS:+--threads "$THREADS"} ${TMAX:+--tmax "$TMAX"} \
         "$WORK/case.h5" -o "$RUNDIR" 2>"$WORK/run.log"

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# pipelines/vres_compare.sh - variable against single resolution on one case (issue 7 item 6):
+# the case's check run three times, single resolution at the coarse dp, single resolution at the
+# fine dp (coarse / dpratio), and variable resolution (the case's refinement box at that fine
+# dp, through vres-partition), then one table and two plots:
+#
+#   pipelines/vres_compare.sh CASE DP_COARSE [DPRATIO] [THREADS]
+#
+#   pipelines/reports/CASE/vres_compare.tsv   variant, dp, particles, steps, run time, error,
+#                                             the check's verdict; the criterion in its footer
+#   pipelines/reports/CASE/vres_compare.png   error against run time, the three variants
+#   pipelines/reports/CASE/vres_profile.png   the compared quantity (the check's profile.tsv:
+#                                             x, value, reference) of each variant
+# The criterion (issue 7): error_vres <= error_fine + 0.25 (error_coarse - error_fine), and
+# run time_vres <= 1.2 time_fine (particle-steps_vres / particle-steps_fine). The runs stay in
+# build/runs/vres_compare/CASE/ (RUNS=DIR to change). Exit 0 when the criterion holds.
+set -u
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+CASE=${1:?usage: vres_compare.sh CASE DP_COARSE [DPRATIO] [THREADS]}
+DPC=${2:?usage: vres_compare.sh CASE DP_COARSE [DPRATIO] [THREADS]}
+R=${3:-2}
+THREADS=${4:-1}
+RUNS=${RUNS:-$ROOT/build/runs/vres_compare/$CASE}
+REP=$ROOT/pipelines/reports/$CASE
+CHECK=$ROOT/cases/$CASE/check
+[ -x "$CHECK" ] || { echo "vres_compare: $CHECK: no check" >&2; exit 2; }
+mkdir -p "$RUNS" "$REP"
+DPF=$(awk -v d="$DPC" -v r="$R" 'BEGIN {printf "%.10g", d / r}')
+export OMP_WAIT_POLICY=passive
+XLABEL=${XLABEL:-position (m)} YLABEL=${YLABEL:-value}
+run() { # NAME DP MODE
+    local dir=$RUNS/$1
+    rm -rf "$dir"
+    "$CHECK" --threads "$THREADS" --dp "$2" "--$3" -o "$dir" >"$RUNS/$1.result" 2>"$RUNS/$1.log"
+    echo "vres_compare: $1 (dp $2, $3): $(awk -F'\t' '$1 == "error" {e = $2} $1 == "verdict" {v = $2} END {print "error " e ", " v}' "$RUNS/$1.result")" >&2
+}
+run single_coarse "$DPC" single
+run single_fine "$DPF" single
+run vres "$DPC" vres
+get() { awk -F'\t' -v k="$2" '$1 == k {print $2}' "$RUNS/$1.result"; }
+{
+    printf '# %s: variable against single resolution (pipelines/vres_compare.sh %s %s %s %s)\n' "$CASE" "$CASE" "$DPC" "$R" "$THREADS"
+    printf '# made: %s on %s (%s CPUs), vres git %s; error: %s\n' "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$(uname -n)" "$(nproc)" \
+        "$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null)" "$(get vres error_def)"
+    printf '# variant\tdp_m\tparticles\tsteps\trun_time_s\terror\tverdict\n'
+    for v in single_coarse single_fine vres; do
+        dp=$DPC; [ "$v" = single_fine ] && dp=$DPF
+        printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$v" "$dp" "$(get $v particles)" "$(get $v steps)" "$(get $v run_time_s)" \
+            "$(get $v error)" "$(get $v verdict)"
+    done
+} >"$REP/vres_compare.tsv.tmp"
+awk -F'\t' '!/^#/ {n[$1] = $3 * $4; t[$1] = $5; e[$1] = $6}
+    END {
+        bound = e["single_fine"] + 0.25 * (e["single_coarse"] - e["single_fine"])
+        tbound = 1.2 * t["single_fine"] * n["vres"] / n["single_fine"]
+        ok = (e["vres"] == e["vres"] + 0 && e["vres"] <= bound) && (t["vres"] <= tbound)
+        printf "# criterion: error_vres %g <= error_fine + 0.25 (error_coarse - error_fine) = %g: %s\n", e["vres"], bound, e["vres"] <= bound ? "yes" : "NO"
+        printf "# criterion: run time %g s <= 1.2 time_fine x particle-steps ratio = %g s: %s\n", t["vres"], tbound, t["vres"] <= tbound ? "yes" : "NO"
+        printf "# verdict\t%s\n", ok ? "pass" : "FAIL"
+    }' "$REP/vres_compare.tsv.tmp" >>"$REP/vres_compare.tsv.tmp"
+mv "$REP/vres_compare.tsv.tmp" "$REP/vres_compare.tsv"
+cat "$REP/vres_compare.tsv"
+if command -v gnuplot >/dev/null; then
+    gnuplot -e "t='$REP/vres_compare.tsv'; set terminal pngcairo size 800,560 noenhanced font ',11'; set output '$REP/vres_compare.png';
+        set datafile separator '\t'; set logscale xy; set grid; set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1;
+        set title '$CASE: error against run time'; set xlabel 'vres-run wall-clock time (s)'; set ylabel 'error';
+        plot t using 5:6:(sprintf('%s\ndp %g, %d particles', stringcolumn(1), \$2, \$3)) with labels point pointtype 7 offset char 1,char 1 left notitle"
+    [ -f "$RUNS/vres/profile.tsv" ] && gnuplot -e "set terminal pngcairo size 800,560 noenhanced font ',11'; set output '$REP/vres_profile.png'; set grid;
+        set title '$CASE: compared quantity against its reference'; set xlabel '$XLABEL'; set ylabel '$YLABEL';
+        plot '$RUNS/single_coarse/profile.tsv' using 1:3 with lines lw 2 title 'reference',
+             '$RUNS/single_coarse/profile.tsv' using 1:2 with points pt 6 title 'single, dp $DPC',
+             '$RUNS/single_fine/profile.tsv' using 1:2 with points pt 4 title 'single, dp $DPF',
+             '$RUNS/vres/profile.tsv' using 1:2 with points pt 7 title 'variable, dp $DPC / $DPF'"
+fi
+grep -q '^# verdict.pass' "$REP/vres_compare.tsv"
