@@ -48,7 +48,8 @@ check "two lines per output ($(grep -c -v '^#' "$L") for $nout outputs)" [ "$(gr
 check "each output's lines: run.tsv's time and step, domains 0 then 1" \
     diff <(grep -v '^#' "$L" | cut -f1-3) <(grep -v '^#' "$T/run/run.tsv" | awk -F'\t' '{print $1 "\t" $2 "\t0"; print $1 "\t" $2 "\t1"}')
 # the ledger and run.tsv count the fluid independently: the same counts; masses printed with 9
-# digits by both, so equal to 1e-8 relative
+# digits by both, so equal to 1e-8 relative (the case has no overlap, overlappingh 0, so every
+# fluid particle is owned by its domain and both totals are the same sum)
 check "ledger: the domains' fluid counts add up to run.tsv's n_fluid" \
     diff <(grep -v '^#' "$L" | awk -F'\t' '{n[$2] += $5} END {for (s in n) print s, n[s]}' | sort -n) \
          <(grep -v '^#' "$T/run/run.tsv" | awk -F'\t' '{print $2, $4}' | sort -n)
