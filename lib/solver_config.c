@@ -147,6 +147,11 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
             count[t])
             vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
                        count[t], vres_ptype_name(t)), *bad = 1;
+    /* the coupling's regions and segments stand still (no box velocity): a box that should follow
+       its body would silently stay behind */
+    if (d->tracking_mk >= 0)
+        vres_error("domain D%zu follows mkbound %d (<tracking>): refinement boxes that move are not implemented yet",
+                   k, d->tracking_mk), *bad = 1;
     return 0;
 }
 
@@ -232,10 +237,15 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
                    "stores run with several domains", s->ndomains);
         return -1;
     }
+    if (s->ndomains > 1 && !s->niface) { /* no segments: no buffer particle would ever be created */
+        vres_error("the store has %zu domains and their regions but no /Interfaces (the mass segments of the buffer "
+                   "bands): only vres-partition's stores run with several domains", s->ndomains);
+        return -1;
+    }
     if (s->ndomains == 1 && s->nboxes && !s->region) {
-        vres_error("the case defines %zu refinement boxes (<vres>): split it into its domains first "
-                   "(vres-partition STORE | vres-run - -o RUNDIR), or drop them (vres-partition --single)",
-                   s->nboxes);
+        vres_error("the case defines %zu refinement box%s (<vres>): split it into its domains first "
+                   "(vres-partition STORE | vres-run - -o RUNDIR), or drop %s (vres-partition --single)",
+                   s->nboxes, s->nboxes == 1 ? "" : "es", s->nboxes == 1 ? "it" : "them");
         return -1;
     }
     c->dim = s->dim;

@@ -63,16 +63,17 @@ typedef struct out_stats {
     double rho_lo;  /* smallest fluid density (kg/m^3) */
     double rho_hi;  /* largest fluid density (kg/m^3) */
     size_t nfluid;  /* fluid particles */
-    size_t nwall;   /* wall particles */
+    size_t nwall;   /* wall particles (fixed, moving, floating) */
 } out_stats;
 
 /* Add domain d's fluid mass, largest speed, density range and counts to o. */
 static void stats_add(out_stats *o, const vres_domain *d)
 {
     double m = 0, v2 = 0, lo = INFINITY, hi = -INFINITY;
-    size_t nf = 0;
-#pragma omp parallel for reduction(+ : m, nf) reduction(max : v2, hi) reduction(min : lo) schedule(static)
+    size_t nf = 0, nw = 0;
+#pragma omp parallel for reduction(+ : m, nf, nw) reduction(max : v2, hi) reduction(min : lo) schedule(static)
     for (size_t i = 0; i < d->n; i++) {
+        nw += vres_type_is_wall(d->type[i]); /* not the buffers: ledger.tsv counts them */
         if (!vres_type_is_fluid(d->type[i])) continue;
         nf++;
         m += d->mass_p[i];
@@ -87,7 +88,7 @@ static void stats_add(out_stats *o, const vres_domain *d)
     o->rho_lo = fmin(o->rho_lo, lo);
     o->rho_hi = fmax(o->rho_hi, hi);
     o->nfluid += nf;
-    o->nwall += d->n - nf;
+    o->nwall += nw;
 }
 
 /* The figures of the run.tsv line over every domain of s. */
@@ -124,8 +125,8 @@ static int write_snapshot(vres_store *s, const run_cfg *c, const run_resume *r, 
     return vres_store_write(s, path);
 }
 
-/* Write snapshot number r->next_snap and its run.tsv line from the backends' state. 0, or -1
- * after printing why. */
+/* Write snapshot number r->next_snap, its run.tsv line and, coupled, its ledger.tsv lines from
+ * the backends' state. 0, or -1 after printing why. */
 int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, const run_files *f,
                     run_clock *clk, double t, long step, double dt)
 {
@@ -135,7 +136,16 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     size_t pairs = 0, n = 0;
     for (size_t k = 0; k < set->n; k++) pairs += set->b[k].count_pairs(&set->b[k]), n += set->b[k].n;
     if (download_all(s, set) != 0) return -1;
-    if (set->couple) vres_couple_save(set->couple, s);
+    if (set->couple) {
+        /* the ledger line first: the first report fixes the start's total mass (run_mass0),
+           which the snapshot must hold so that a restart from it measures the drift alike */
+        vres_couple_report(set->couple, s, set->dt, f->ledger, t, step);
+        if (f->ledger && ferror(f->ledger)) {
+            vres_error("%s/ledger.tsv: write failed", f->dir);
+            return -1;
+        }
+        vres_couple_save(set->couple, s);
+    }
     r->next_snap++;
     char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
     int rc = write_snapshot(s, c, r, path, t, step);
@@ -151,13 +161,6 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     if (ferror(f->tsv)) {
         vres_error("%s/run.tsv: write failed", f->dir);
         return -1;
-    }
-    if (set->couple) {
-        vres_couple_report(set->couple, s, set->dt, f->ledger, t, step);
-        if (f->ledger && ferror(f->ledger)) {
-            vres_error("%s/ledger.tsv: write failed", f->dir);
-            return -1;
-        }
     }
     vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3",
                r->next_snap - 1, t, step, dt, st.vmax, st.rho_lo, st.rho_hi);

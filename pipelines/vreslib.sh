@@ -84,12 +84,15 @@ tsv_last() {
 }
 
 # run_summary RUNDIR: the cost lines of the check protocol from run.tsv: particles (fluid +
-# wall at the last line), steps, t_end_s and run_time_s (wall-clock seconds of vres-run's time
-# loop, snapshot writing included, as run.tsv's wall_s).
+# wall at the last line, and with several domains the buffers of ledger.tsv's last output:
+# they cost like the rest), steps, t_end_s and run_time_s (wall-clock seconds of vres-run's
+# time loop, snapshot writing included, as run.tsv's wall_s).
 run_summary() {
-    local d=$1
+    local d=$1 nb=0
     [ -f "$d/run.tsv" ] || die "$d: no run.tsv (not a vres-run directory)"
-    report particles "$(( $(tsv_last "$d" n_fluid) + $(tsv_last "$d" n_wall) ))"
+    [ -f "$d/ledger.tsv" ] &&
+        nb=$(awk -F'\t' '!/^#/ {if ($2 != s) n = 0; s = $2; n += $6} END {print n + 0}' "$d/ledger.tsv")
+    report particles "$(( $(tsv_last "$d" n_fluid) + $(tsv_last "$d" n_wall) + nb ))"
     report steps "$(tsv_last "$d" step)"
     report t_end_s "$(tsv_last "$d" time_s)"
     report run_time_s "$(tsv_last "$d" wall_s)"

@@ -29,12 +29,14 @@ sed -e '/<setmkfluid/,/<\/drawbox>/d' -e 's/<hswl value="0" auto="true"/<hswl va
 "$GEN" -q "$T/dry.xml" -o "$T/dry.h5" || notok "gencase the dry tank"
 refused 1 'no fluid particles' "store without fluid" "$T/dry.h5"
 
-# variable resolution: a case with a refinement box, and a store with three domains
+# variable resolution: a case with a refinement box not yet split by vres-partition, and a
+# store with three domains but no domain tree (tests/vres-run/test_vres_bad.sh has the rest)
 "$GEN" -q --dp 0.02 "$CASES/dambreak2d/dambreak2d_Def.xml" -o "$T/vres.h5" || notok "gencase dambreak2d"
-refused 1 'refinement box.*variable resolution' "case with a <vres> box" "$T/vres.h5"
+refused 1 'the case defines 1 refinement box \(<vres>\): split it into its domains first \(vres-partition' \
+    "case with a <vres> box, not partitioned" "$T/vres.h5"
 MAKER=$ROOT/$VRES_BUILD/tests/test_store
 if VRES_TEST_STORE_OUT=$T/three.h5 "$MAKER" >/dev/null 2>&1; then
-    refused 1 '3 domains: variable resolution' "store with three domains" "$T/three.h5"
+    refused 1 '3 domains but no domain tree' "store with three domains, no domain tree" "$T/three.h5"
 else notok "make the three-domain store with $MAKER (build it: make $VRES_BUILD/tests/test_store)"; fi
 
 # parameters not implemented yet: each named, never ignored

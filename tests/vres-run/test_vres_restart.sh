@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# vres-run --restart with several domains continues the coupled run bit for bit (DESIGN 3: "a
+# restart continues to the same result"; vres-run(1), Restart): the particles of every domain,
+# the interface segments' accumulated masses, run.tsv's times and steps and ledger.tsv's lines
+# after the restart are those of the uninterrupted run, whichever snapshot it starts from.
+#
+# The case is cases/hydrostatic_vres2d under a sideways gravity of 3 m/s^2 (the tank as if
+# tilted), so that in 0.1 s the water crosses the interface: buffer particles turn fluid, fluid
+# turns buffer, segments create particles and buffer particles past the band's edge are
+# deleted, in the part of the run that the restart continues (checked below, so that the test
+# still covers them if the physics changes). At rest nothing of that happens in a short run.
+source "$(dirname "$0")/../harness.sh"
+RUN=$BIN/vres-run
+sed 's/<gravity x="0"/<gravity x="3"/' "$CASES/hydrostatic_vres2d/hydrostatic_vres2d_Def.xml" >"$T/tilt.xml"
+grep -q '<gravity x="3"' "$T/tilt.xml" || notok "the sideways gravity is in the case"
+"$BIN/vres-gencase" -q "$T/tilt.xml" -o "$T/tilt.h5" || notok "gencase the tilted tank"
+"$BIN/vres-partition" -q "$T/tilt.h5" -o "$T/parts.h5" || notok "partition the tilted tank"
+
+# The uninterrupted run: 5 outputs after the start (about 1600 steps).
+expect 0 "uninterrupted coupled run to 0.1 s, 5 outputs" "$RUN" -q --tmax 0.1 --tout 0.02 "$T/parts.h5" -o "$T/a"
+check "snapshots 0 to 5 written" [ -f "$T/a/snap_00005.h5" -a ! -e "$T/a/snap_00006.h5" ]
+
+# ledger.tsv column COL (1-based, ledger.tsv's header) summed over domains on the lines of step
+# STEP, from run directory DIR
+ledger_sum() { awk -F'\t' -v c="$3" -v s="$2" '!/^#/ && $2 == s {n += $c} END {print n + 0}' "$1/ledger.tsv"; }
+# the step of output K (0-based) in run.tsv
+out_step() { grep -v '^#' "$1/run.tsv" | sed -n "$(($2 + 1))p" | cut -f2; }
+s2=$(out_step "$T/a" 2)
+s5=$(out_step "$T/a" 5)
+# columns: 8 created, 10 buffer_to_fluid, 11 fluid_to_buffer, 12 deleted_buffer (cumulative)
+for ev in 8:created 10:buffer_to_fluid 11:fluid_to_buffer 12:deleted_buffer; do
+    c=${ev%%:*} name=${ev#*:}
+    check "the continued part (steps $s2..$s5) has $name events" \
+        [ "$(ledger_sum "$T/a" "$s5" "$c")" -gt "$(ledger_sum "$T/a" "$s2" "$c")" ]
+done
+
+# same_snaps A B K[:L]...: snapshot K of run directory A and snapshot L (default K) of B hold
+# the same datasets, bit for bit (h5diff without a tolerance compares exactly): every dataset
+# of every domain and the mass of every interface, listed from A's snapshot with h5ls.
+same_snaps() {
+    local a=$1 b=$2 k fa fb d ds i bad; shift 2
+    for k in "$@"; do
+        fa=$a/$(printf 'snap_%05d.h5' "${k%%:*}") fb=$b/$(printf 'snap_%05d.h5' "${k#*:}")
+        bad=
+        for d in $(h5ls "$fa/Domains" | awk '{print $1}'); do
+            for ds in Position Velocity Density Pressure Mass Type Mk Id; do
+                h5diff -q "$fa" "$fb" "/Domains/$d/$ds" "/Domains/$d/$ds" >/dev/null || bad="$bad $d/$ds"
+            done
+        done
+        for i in $(h5ls "$fa/Interfaces" | awk '{print $1}'); do
+            h5diff -q "$fa" "$fb" "/Interfaces/$i/Mass" "/Interfaces/$i/Mass" >/dev/null || bad="$bad $i/Mass"
+        done
+        if [ -z "$bad" ] && [ -n "$(h5ls "$fa/Interfaces")" ]; then ok "${fb#$T/}: every domain and interface equal"
+        else notok "${fb#$T/}: differs from ${fa#$T/} in$bad"; fi
+    done
+}
+check "the uninterrupted run has two domains and two interfaces" \
+    [ "$(h5ls "$T/a/snap_00005.h5/Domains" | wc -l)" -eq 2 -a "$(h5ls "$T/a/snap_00005.h5/Interfaces" | wc -l)" -eq 2 ]
+
+# 1. In a copy of the run directory from snapshot 2, in its own directory (the default).
+cp -r "$T/a" "$T/b"
+expect 0 "restart from snap_00002.h5 in its own directory" "$RUN" --threads 1 --restart "$T/b/snap_00002.h5"
+check "says it removed the snapshots it rewrites" grep -q 'removed snap_00003.h5 .. snap_00005.h5' "$ERR"
+same_snaps "$T/a" "$T/b" 3 4 5
+check "run.tsv: same times, steps, counts, masses, speeds and densities" \
+    diff <(grep -v '^#' "$T/a/run.tsv" | cut -f1-9) <(grep -v '^#' "$T/b/run.tsv" | cut -f1-9)
+check "ledger.tsv: the same file (earlier lines kept, later ones rewritten alike)" cmp -s "$T/a/ledger.tsv" "$T/b/ledger.tsv"
+
+# 2. From snapshot 4, into a new directory: its ledger.tsv has a header and the last output's
+# lines, equal to the uninterrupted run's.
+expect 0 "restart from snap_00004.h5 into a new -o" "$RUN" -q --restart "$T/a/snap_00004.h5" -o "$T/c"
+same_snaps "$T/a" "$T/c" 5
+check "the new ledger.tsv has the header and one line per domain" \
+    [ "$(head -1 "$T/c/ledger.tsv")" = "$(head -1 "$T/a/ledger.tsv")" -a "$(grep -c -v '^#' "$T/c/ledger.tsv")" -eq 2 ]
+check "its lines are the uninterrupted run's last ones" \
+    diff <(grep -v '^#' "$T/c/ledger.tsv") <(grep -v '^#' "$T/a/ledger.tsv" | tail -2)
+
+# 3. From the starting snapshot, with one output at 0.06 s (a new --tout restarts the schedule
+# at the snapshot's time; outputs change nothing of the state): the ledger's drift refers to
+# the total fluid mass at the run's start (run_mass0 in every snapshot), not at the restart's
+# first output, by which the water has crossed the interface and the total has changed.
+t3=$(grep -v '^#' "$T/a/run.tsv" | sed -n 4p | cut -f1)
+check "the total fluid mass changed by output 3 (t = $t3 s)" \
+    [ "$(ledger_sum "$T/a" "$(out_step "$T/a" 3)" 7)" != "$(ledger_sum "$T/a" 0 7)" ]
+expect 0 "restart from snap_00000.h5 with --tmax 0.06 --tout 0.06 into a new -o" \
+    "$RUN" -q --restart "$T/a/snap_00000.h5" --tmax 0.06 --tout 0.06 -o "$T/z"
+same_snaps "$T/a" "$T/z" 3:1
+check "its ledger.tsv lines, drift included, are the uninterrupted run's at output 3" \
+    diff <(grep -v '^#' "$T/z/ledger.tsv") <(grep -v '^#' "$T/a/ledger.tsv" | sed -n 7,8p)
+# the ledger prints 9 significant digits: the stored value must agree to that
+m0=$(grep -v '^#' "$T/a/ledger.tsv" | head -1 | cut -f19)
+for k in 0 5; do
+    f=$(printf 'snap_%05d.h5' $k)
+    v=$(h5dump -m '%.17g' -a /Parameters/run_mass0 "$T/a/$f" | sed -n 's/^ *(0): //p')
+    check "$f: run_mass0 ($v kg) is the total fluid mass at the start ($m0 kg)" \
+        awk -v a="$v" -v b="$m0" 'BEGIN {exit !(a - b <= 1e-8 * b && b - a <= 1e-8 * b)}'
+done
