@@ -342,6 +342,18 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }
+    /* the coupling of several domains runs on the CPU backend only, for now: --device auto
+       takes the CPU for it, --device cuda is refused before anything is written */
+    if (set.n > 1 && dev == VRES_DEV_CUDA) {
+        if (o->device && !strcmp(o->device, "cuda")) {
+            vres_error("%zu domains: the CUDA backend does not run the coupling of variable resolution yet; use "
+                       "--device cpu", set.n);
+            free_set(&set, 0);
+            return VRES_RUN_FAIL;
+        }
+        vres_info("%zu domains: the coupling of variable resolution runs on the CPU backend: using the CPU", set.n);
+        dev = VRES_DEV_CPU;
+    }
     if (o->threads > 0) omp_set_num_threads(o->threads);
     c.threads = omp_get_max_threads();
     if (vres_run_prepare_dir(o->rundir, o->restart, s->step, r.next_snap) != 0 ||

@@ -353,13 +353,12 @@ static void domain_mass(const vres_couple *C, int k, const vres_domain *d, size_
 double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk, FILE *f, double t, long step)
 {
     double total = 0, bound = 0;
-    size_t nf[64], nb[64];
-    double mf[64], pend[64];
-    int nd = C->ndom < 64 ? C->ndom : 64;
+    size_t *nf = vres_xcalloc((size_t)C->ndom, sizeof *nf), *nb = vres_xcalloc((size_t)C->ndom, sizeof *nb);
+    double *mf = vres_xcalloc((size_t)C->ndom, sizeof *mf), *pend = vres_xcalloc((size_t)C->ndom, sizeof *pend);
+    const int nd = C->ndom;
     for (int k = 0; k < nd; k++) {
         domain_mass(C, k, &s->dom[k], &nf[k], &nb[k], &mf[k]);
         total += mf[k];
-        pend[k] = 0;
         for (size_t j = 0; j < C->d[k].nseg; j++) pend[k] += C->d[k].mass[j];
         bound += (double)C->d[k].nseg * s->dom[k].mass;
     }
@@ -375,6 +374,7 @@ double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk
         }
         fflush(f);
     }
+    free(nf), free(nb), free(mf), free(pend);
     if (C->mass0 > 0 && fabs(total - C->mass0) > bound)
         vres_warn("t = %.6g s, step %ld: total fluid mass %.9g kg drifted %+.3g%% since the start, more than one "
                   "particle mass per interface segment (%.3g kg)", t, step, total, 100 * drift, bound);
