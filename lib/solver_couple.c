@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "log.h"
+#include "owner.h"
 #include "store.h"
 
 /* One domain's side of the coupling. */
@@ -331,22 +332,19 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
     s->next_id = C->next_id;
 }
 
-/* Fluid count and mass (kg) and buffer count of domain k (particles d). The mass counts only the
- * fluid domain k owns: with overlappingh > 0 the parent keeps fluid inside a child's box, where
- * the child's fluid is the flow, so that fluid is counted once, as the child's. */
-static void domain_mass(const vres_couple *C, int k, const vres_domain *d, size_t *nf, size_t *nb, double *mf)
+/* Fluid count and mass (kg) and buffer count of domain k of store s. The mass counts only the
+ * fluid domain k owns (lib/owner.h): with overlappingh > 0 the parent keeps fluid inside a
+ * child's box, where the child's fluid is the flow, so that fluid is counted once, as the child's. */
+static void domain_mass(const vres_store *s, int k, size_t *nf, size_t *nb, double *mf)
 {
+    const vres_domain *d = &s->dom[k];
     *nf = *nb = 0;
     *mf = 0;
     for (size_t i = 0; i < d->n; i++) {
         if (vres_type_is_buffer(d->type[i])) (*nb)++;
         if (!vres_type_is_fluid(d->type[i])) continue;
         (*nf)++;
-        int owned = 1;
-        for (int j = k + 1; owned && j < C->ndom; j++)
-            if (C->reg[j].parent == k && vres_region_in_box(C->reg[j].fluid_lo, C->reg[j].fluid_hi, 0, &d->pos[3 * i], C->dim))
-                owned = 0;
-        if (owned) *mf += d->mass_p[i];
+        if (vres_owns(s, (size_t)k, &d->pos[3 * i])) *mf += d->mass_p[i];
     }
 }
 
@@ -357,7 +355,7 @@ double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk
     double *mf = vres_xcalloc((size_t)C->ndom, sizeof *mf), *pend = vres_xcalloc((size_t)C->ndom, sizeof *pend);
     const int nd = C->ndom;
     for (int k = 0; k < nd; k++) {
-        domain_mass(C, k, &s->dom[k], &nf[k], &nb[k], &mf[k]);
+        domain_mass(s, k, &nf[k], &nb[k], &mf[k]);
         total += mf[k];
         for (size_t j = 0; j < C->d[k].nseg; j++) pend[k] += C->d[k].mass[j];
         bound += (double)C->d[k].nseg * s->dom[k].mass;
