@@ -199,11 +199,22 @@ static int plan_child(plan *p, int k)
         }
         if (d->lo[a] <= s->domain_min[a] + TIE * d->dp) d->open |= VRES_FACE(a, 0);
         if (d->hi[a] >= s->domain_max[a] - TIE * d->dp) d->open |= VRES_FACE(a, 1);
-        if (!fit_axis(d->ref[a], d->dp, d->lo[a], d->hi[a], &r->fluid_lo[a], &r->fluid_hi[a])) {
-            perr(p, k, "the box holds no particle of its dp %g m along %c (it is %g m thick)", d->dp, "xyz"[a],
-                 d->hi[a] - d->lo[a]);
+        /* the box on the parent's lattice first, then on its own: a face on a parent node would
+           otherwise leave the parent's hole half a parent cell wider than the child's fluid, a
+           strip where neither domain has fluid (the parent's buffers there have little child
+           support and are deleted: measured on cases/stiff_vres_front2d, 45 parent particles,
+           9% of the water, in 0.8 s) */
+        double plo, phi, olo, ohi;
+        if (!fit_axis(q->ref[a], q->dp, d->lo[a], d->hi[a], &plo, &phi) ||
+            !fit_axis(d->ref[a], d->dp, plo, phi, &r->fluid_lo[a], &r->fluid_hi[a]) ||
+            !fit_axis(d->ref[a], d->dp, d->lo[a], d->hi[a], &olo, &ohi)) {
+            perr(p, k, "the box holds no particle of its parent's dp %g m along %c (it is %g m thick)", q->dp,
+                 "xyz"[a], d->hi[a] - d->lo[a]);
             return -1;
         }
+        /* a face cut at the simulation domain's edge has no parent fluid beyond: its own fit */
+        if (d->open & VRES_FACE(a, 0)) r->fluid_lo[a] = olo;
+        if (d->open & VRES_FACE(a, 1)) r->fluid_hi[a] = ohi;
         r->buff_lo[a] = r->fluid_lo[a] - band, r->buff_hi[a] = r->fluid_hi[a] + band;
         if (!fit_axis(q->ref[a], q->dp, r->fluid_lo[a] + ov, r->fluid_hi[a] - ov, &r->hole_lo[a], &r->hole_hi[a])) {
             perr(p, k, "the box (less its overlap %g m) holds no particle of its parent's dp %g m along %c", ov, q->dp,
