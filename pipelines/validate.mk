@@ -19,8 +19,9 @@
 # summary is written.
 #
 # The default list holds the validations whose physics vres-run has and the stability cases
-# (DESIGN section 7). cavity_re1000 is the longest entry (30 s of flow at L/dp = 40: 27 min on
-# one core of the loaded 2-core VM; cases/cavity_re1000/README.md).
+# (DESIGN section 7; the stiff_vres_* ones run coupled, through vres-partition). cavity_re1000
+# is the longest entry (30 s of flow at L/dp = 40: 27 min on one core of the loaded 2-core VM;
+# cases/cavity_re1000/README.md).
 
 BIN     := bin
 RUNS    ?= build/runs
@@ -31,7 +32,9 @@ V       := $(RUNS)/validate
 VALIDATE ?= dambreak_front2d:0.02 dambreak_front2d:0.01 hydrostatic_profile2d:0.02 \
             poiseuille2d:5e-5 couette2d:5e-5 poiseuille_mdbc2d:5e-5 cavity_re100:0.02 \
             dambreak_lobovsky2d:0.01 ritter2d:0.05 taylor_green2d:0.02 cavity_re1000:0.025 \
-            stiff_rest2d: stiff_impact2d: stiff_lowvisc2d: stiff_tinydp2d:
+            stiff_rest2d: stiff_impact2d: stiff_lowvisc2d: stiff_tinydp2d: \
+            stiff_vres_front2d: stiff_vres_dpratio4_2d: stiff_vres_nested3_2d: stiff_vres_corner2d: \
+            stiff_vres_siblings2d:
 
 case_of = $(word 1,$(subst :, ,$(1)))
 dp_of   = $(word 2,$(subst :, ,$(1)))
@@ -59,7 +62,7 @@ $(V)/summary.tsv: $(RESULTS) pipelines/validate.mk
 	   printf '# command: make validate VALIDATE="%s" THREADS=$(THREADS) (each entry: cases/CASE/check --threads $(THREADS) --dp DP -o RUNDIR)\n' '$(strip $(VALIDATE))'; \
 	   printf '# made: %s on %s (%s CPUs: %s), vres git %s\n' "$$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$$(uname -n)" "$$(nproc)" \
 	     "$$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)" "$$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"; \
-	   printf '# error and tolerance: as each case defines them (cases/CASE/README.md); stability cases: relative change of the fluid mass\n'; \
+	   printf '# error and tolerance: as each case defines them (cases/CASE/README.md); stability cases: relative change of the fluid mass (stiff_vres_*: largest total mass drift of ledger.tsv, against one particle mass per segment)\n'; \
 	   printf '# case\tdp_m\tparticles\tsteps\trun_time_s\terror\ttolerance\tverdict\n'; \
 	   for r in $(RESULTS); do \
 	     awk -F'\t' -v f="$$r" '{v[$$1] = $$2} END { n = split("case dp_m particles steps run_time_s error tolerance verdict", k, " "); \
