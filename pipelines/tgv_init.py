@@ -5,9 +5,11 @@
 
 The case format (DualSPHysics' GenCase XML) has no way to give a velocity field that varies in
 space, so cases/taylor_green2d/check writes it into the store vres-gencase made, in place,
-with h5py (the store is plain HDF5, vres-store(5)). For the fluid of the root domain, in the
-x-z plane, with L the side of the periodic square (the fluid's extent plus dp, read from the
-particles) and U the velocity scale (default 1 m/s):
+with h5py (the store is plain HDF5, vres-store(5)). For the fluid and buffer particles of every
+domain (D0, D1, ...: run it after vres-partition, which redraws each domain at its own dp), in
+the x-z plane, with L the side of the periodic square (the extent of the root domain's fluid
+and buffer particles plus its dp; the origin is half a root dp below the lowest of them) and U
+the velocity scale (default 1 m/s):
     u = -U cos(2 pi x/L) sin(2 pi z/L)
     w =  U sin(2 pi x/L) cos(2 pi z/L)
     p = -(rho0 U^2 / 4) (cos(4 pi x/L) + cos(4 pi z/L))
@@ -32,7 +34,7 @@ def fail(msg):
 
 
 def main():
-    """Outline: read the store's fluid, compute the fields, write them back, note the history."""
+    """Outline: read each domain's fluid and buffer, compute the fields, write them back, note the history."""
     ap = argparse.ArgumentParser(prog="tgv_init.py", description=__doc__.split("\n")[0])
     ap.add_argument("store")
     ap.add_argument("--U", type=float, default=1.0, help="velocity scale (m/s)")
@@ -44,37 +46,47 @@ def main():
     with f:
         if f.attrs.get("format", b"") not in (b"vres-store", "vres-store") or int(f.attrs.get("dim", 0)) != 2:
             fail(f"{args.store}: not a 2-D vres store")
-        d = f["Domains/D0"]
         par = f["Parameters"].attrs
         rho0, B, gamma = float(par["rhop0"]), float(par["B"]), float(par["gamma"])
-        dp = float(d.attrs["dp"])
-        fluid = d["Type"][:] == 0
-        if not fluid.any():
+        names = sorted((k for k in f["Domains"].keys() if k[0] == "D" and k[1:].isdigit()), key=lambda k: int(k[1:]))
+        if not names or names[0] != "D0":
+            fail(f"{args.store}: no root domain D0")
+        d0 = f["Domains/D0"]
+        dp0 = float(d0.attrs["dp"])
+        moved = np.isin(d0["Type"][:], (0, 1))  # fluid and buffer: together they tile the square
+        if not (d0["Type"][:] == 0).any():
             fail(f"{args.store}: no fluid particles")
-        pos = d["Position"][:]
-        x, z = pos[fluid, 0], pos[fluid, 2]
-        L = x.max() - x.min() + dp
-        if abs((z.max() - z.min() + dp) - L) > 1e-6 * L:
+        pos0 = d0["Position"][:]
+        xmin, zmin = pos0[moved, 0].min(), pos0[moved, 2].min()
+        L = pos0[moved, 0].max() - xmin + dp0
+        if abs((pos0[moved, 2].max() - zmin + dp0) - L) > 1e-6 * L:
             fail(f"{args.store}: the fluid is not a square")
-        kx, kz = 2 * np.pi * (x - x.min() + dp / 2) / L, 2 * np.pi * (z - z.min() + dp / 2) / L
         U = args.U
-        vel = d["Velocity"][:]
-        vel[fluid, 0] = -U * np.cos(kx) * np.sin(kz)
-        vel[fluid, 1] = 0.0
-        vel[fluid, 2] = U * np.sin(kx) * np.cos(kz)
-        p = d["Pressure"][:]
-        p[fluid] = -(rho0 * U * U / 4) * (np.cos(2 * kx) + np.cos(2 * kz))
-        rho = d["Density"][:]
-        rho[fluid] = rho0 * (1 + p[fluid] / B) ** (1 / gamma)
-        d["Velocity"][...] = vel
-        d["Pressure"][...] = p
-        d["Density"][...] = rho
+        nset = 0
+        for name in names:
+            d = f["Domains/" + name]
+            sel = np.isin(d["Type"][:], (0, 1))
+            pos = d["Position"][:]
+            x, z = pos[sel, 0], pos[sel, 2]
+            kx, kz = 2 * np.pi * (x - xmin + dp0 / 2) / L, 2 * np.pi * (z - zmin + dp0 / 2) / L
+            vel = d["Velocity"][:]
+            vel[sel, 0] = -U * np.cos(kx) * np.sin(kz)
+            vel[sel, 1] = 0.0
+            vel[sel, 2] = U * np.sin(kx) * np.cos(kz)
+            p = d["Pressure"][:]
+            p[sel] = -(rho0 * U * U / 4) * (np.cos(2 * kx) + np.cos(2 * kz))
+            rho = d["Density"][:]
+            rho[sel] = rho0 * (1 + p[sel] / B) ** (1 / gamma)
+            d["Velocity"][...] = vel
+            d["Pressure"][...] = p
+            d["Density"][...] = rho
+            nset += int(sel.sum())
         old = f.attrs.get("history", b"")
         old = old.decode() if isinstance(old, bytes) else str(old)
         line = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()) + " " + " ".join(["tgv_init.py"] + sys.argv[1:])
         f.attrs.create("history", np.bytes_(line + ("\n" + old if old else "")))
-    print(f"tgv_init.py: {args.store}: Taylor-Green vortex set on {int(fluid.sum())} fluid particles, "
-          f"L = {L:g} m, U = {U:g} m/s", file=sys.stderr)
+    print(f"tgv_init.py: {args.store}: Taylor-Green vortex set on {nset} fluid and buffer particles "
+          f"in {len(names)} domain(s), L = {L:g} m, U = {U:g} m/s", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -74,6 +74,51 @@ particles_all() {
     for ((k = 0; k < n; k++)); do particles "$f" "$k" | awk -v k="$k" '{print $0 "\t" k}'; done
 }
 
+# domain_boxes FILE: one line per domain: k parent dp box_min_x y z box_max_x y z (the root's
+# parent is -1; a root without box attributes gets none: it owns what no child holds).
+domain_boxes() {
+    local f=$1 k n p
+    n=$(domains "$f")
+    for ((k = 0; k < n; k++)); do
+        p=$(attr /Domains/D$k/parent "$f"); [ -n "$p" ] || p=-1
+        [ "$k" -eq 0 ] && p=-1
+        printf '%s %s %s %s %s\n' "$k" "$p" "$(attr /Domains/D$k/dp "$f")" \
+            "$(attrv /Domains/D$k/box_min "$f" | paste -s -d ' ')" "$(attrv /Domains/D$k/box_max "$f" | paste -s -d ' ')"
+    done
+}
+
+# owned_fluid FILE: the fluid particles (type 0) of every domain that their own domain owns, each
+# piece of fluid once: the lines of particles_all (type x y z vx vy vz rho p k) with the
+# particle's mass appended (an eleventh column). The owner of a point is lib/owner.c's
+# (vres_owns): from the root down, the finest child whose box (faces included; y ignored in 2-D)
+# holds it, so a child owns its box and a parent's fluid inside it (overlappingh) is not counted.
+owned_fluid() {
+    local f=$1 k n dim
+    n=$(domains "$f")
+    dim=$(attr /dim "$f"); [ -n "$dim" ] || dim=3
+    for ((k = 0; k < n; k++)); do
+        paste <(particles "$f" "$k") <(values /Domains/D$k/Mass "$f") | awk -v k="$k" '$1 == 0 {print $1, $2, $3, $4, $5, $6, $7, $8, $9, k, $10}'
+    done | awk -v dim="$dim" -v boxes="$(domain_boxes "$f")" '
+        BEGIN { nd = split(boxes, line, "\n")
+                for (i = 1; i <= nd; i++) { split(line[i], v, " "); k = v[1]; par[k] = v[2]; dp[k] = v[3]
+                    for (a = 0; a < 3; a++) { lo[k, a] = v[4 + a]; hi[k, a] = v[7 + a] } } }
+        # 1 when point (x, y, z) lies in the box of domain k (faces included; a flat box holds nothing)
+        function inbox(k, x, y, z,   a, c) {
+            for (a = 0; a < 3; a++) { if (a == 1 && dim == 2) continue
+                c = (a == 0 ? x : a == 1 ? y : z)
+                if (!(hi[k, a] > lo[k, a]) || c < lo[k, a] || c > hi[k, a]) return 0 }
+            return 1 }
+        # the domain that owns point (x, y, z): lib/owner.c vres_owner
+        function owner(x, y, z,   cur, best, d, k) {
+            cur = 0
+            for (d = 0; d < nd; d++) { best = cur
+                for (k = 1; k < nd; k++) if (k != cur && par[k] == cur && inbox(k, x, y, z) && (best == cur || dp[k] < dp[best])) best = k
+                if (best == cur) break
+                cur = best }
+            return cur }
+        owner($2, $3, $4) == $10 { print }'
+}
+
 # snapshots RUNDIR: the numbered snapshots of a run in time order (not snap_last_good.h5).
 snapshots() { ls "$1"/snap_[0-9]*.h5 2>/dev/null | sort; }
 
