@@ -25,7 +25,11 @@
  * on cases/hydrostatic_vres2d: 0.12 kg, 1.2 fine particle masses, over 0.2 s in 142 segments),
  * while the signed sum cancels it. Outflow leaves by deletion: particles that cross a band's
  * outer edge are deleted. A segment holding at least the domain's particle mass creates one
- * buffer particle dp_k/2 inside it (vres_couple_birth) and loses that mass. */
+ * buffer particle dp_k/2 inside it (vres_couple_birth) and loses that mass.
+ *
+ * The same pass counts what the donor's fluid particles actually carried across each segment
+ * (vres_couple_crossing, exact by construction); lib/solver_couple.c keeps the total the
+ * interpolated flux accumulates over a donor's segments to that count (VRES_FLUX_BALANCED). */
 #ifndef VRES_KERNELS_COUPLE_H
 #define VRES_KERNELS_COUPLE_H
 
@@ -54,6 +58,7 @@
 typedef struct vres_donor {
     vres_cells cells;    /* its cell list, current for the positions below (device copy on CUDA) */
     const double *pos;   /* [3n] positions (m), cell order */
+    const double *pos0;  /* [3n] positions at the step's start (m), cell order: the crossing flux's "before" */
     const float *vel;    /* [3n] velocities (m/s) */
     const float *rho;    /* [n] densities (kg/m^3) */
     const double *mass;  /* [n] particle masses (kg) */
@@ -80,7 +85,16 @@ typedef struct vres_segments {
     float *rho;            /* [nseg] the donor's interpolated density there (kg/m^3), NaN without support */
     float *vel;            /* [3 nseg] the donor's interpolated velocity there (m/s) */
     uint8_t *state;        /* [nseg] VRES_SEG_* of the last update */
+    int method;            /* how the mass is measured: VRES_FLUX_BALANCED (default), _INTERP or _CROSSING */
+    double *dm;            /* [nseg] BALANCED: the interpolated increment of the last update (kg), 0 where gated */
+    double *cross;         /* [nseg] BALANCED: the donor mass that crossed it in the last update (kg) */
 } vres_segments;
+
+/* How a segment measures the mass it accumulates (vres_segments.method). */
+#define VRES_FLUX_BALANCED 0 /* the interpolated flux, its sum over a donor's segments kept to what crossed them
+                                (the segment pass gives both; lib/solver_couple.c balances) */
+#define VRES_FLUX_INTERP 1   /* -rho* (v* - v_box) . n A dt from the interpolated donor, gated (DESIGN 5) */
+#define VRES_FLUX_CROSSING 2 /* the donor's fluid particles that crossed it over the step (vres_couple_crossing) */
 
 /* What happened to a segment in the last update (vres_segments.state). */
 #define VRES_SEG_FLUX 0     /* accumulated dm (negative for outflow) */
@@ -149,8 +163,107 @@ VRES_HD static inline int vres_couple_flux_gate(const vres_liu_result *r, int di
     return r->method != VRES_LIU_NOSUPPORT && (r->div > VRES_COUPLE_DIV_GATE * dim || r->dmin < dp_min);
 }
 
+/* The share of a particle's slab of thickness dp (m), centred at depth s (m) below a segment's
+ * plane on the band's side (s < 0: on the donor's side), that lies beyond the plane:
+ * clamp(s / dp + 1/2, 0, 1). */
+VRES_HD static inline double vres_couple_slab(double s, double dp)
+{
+    const double f = s / dp + 0.5;
+    return f < 0 ? 0.0 : f > 1 ? 1.0 : f;
+}
+
+/* The share of a particle's extent [t - dp/2, t + dp/2] (m) along a tangent that the segment's
+ * extent [-len/2, len/2] (m) covers. */
+VRES_HD static inline double vres_couple_cover(double t, double dp, double len)
+{
+    const double lo = fmax(t - 0.5 * dp, -0.5 * len), hi = fmin(t + 0.5 * dp, 0.5 * len);
+    return hi > lo ? (hi - lo) / dp : 0.0;
+}
+
+/* Two unit tangents t1, t2 of the unit normal n (2D: t1 in the x-z plane, t2 = y, unused). For an
+ * axis-aligned n they are the other two axes, so a patch is aligned with the lattice. */
+VRES_HD static inline void vres_couple_tangents(const double n[3], int dim, double t1[3], double t2[3])
+{
+    if (dim == 2) {
+        t1[0] = -n[2], t1[1] = 0, t1[2] = n[0];
+        t2[0] = 0, t2[1] = 1, t2[2] = 0;
+        return;
+    }
+    /* e: the axis least aligned with n; t1 = n x e normalised, t2 = n x t1 */
+    const double ax = fabs(n[0]), ay = fabs(n[1]), az = fabs(n[2]);
+    const double e[3] = {(ax <= ay && ax <= az) ? 1.0 : 0.0, (ay < ax && ay <= az) ? 1.0 : 0.0, (az < ax && az < ay) ? 1.0 : 0.0};
+    double c[3] = {n[1] * e[2] - n[2] * e[1], n[2] * e[0] - n[0] * e[2], n[0] * e[1] - n[1] * e[0]};
+    const double l = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    for (int a = 0; a < 3; a++) t1[a] = c[a] / l;
+    t2[0] = n[1] * t1[2] - n[2] * t1[1], t2[1] = n[2] * t1[0] - n[0] * t1[2], t2[2] = n[0] * t1[1] - n[1] * t1[0];
+}
+
+/* The donor mass (kg) that crossed a segment (centre c, unit normal n, area A: a length in 2D, a
+ * square patch of side sqrt(A) in 3D, moving at vbox m/s) into its band over the step of dt s,
+ * negative for what crossed out. Each donor fluid particle b is a slab of the donor's spacing dp_b
+ * (a square of side dp_b in 2D, a cube in 3D) that moved from its step-start position pos0 to
+ * pos: it brings m_b times the share of its tangential extent the segment covers times the
+ * change of the share of its slab beyond the plane. Summed over a step, and over the segments of
+ * a face, what a particle brings telescopes to its mass exactly when it has crossed, and to zero
+ * when it came back, whatever its path; a free surface brings what its particles carry, so no
+ * gate is needed there. The flux of DESIGN 5, -rho* v* . n A dt, instead depends on where the
+ * free-surface gate cuts a thin layer and on the interpolation near the donor's region's edge:
+ * on cases/dambreak2d (root dp 0.01 m, overlappingh 2) it created 1.9% more mass in the box by
+ * t = 1 s than the root's particles brought across the segments (vres-run(1)). */
+VRES_HD static inline double vres_couple_crossing(const vres_donor *D, const double c[3], const double n[3],
+                                                  double area, const double vbox[3], double dt)
+{
+    const int dim = D->cells.dim;
+    const double dpb = D->dp, len = dim == 2 ? area : sqrt(area), h2 = 2.0 * D->o.k.h;
+    double t1[3], t2[3];
+    vres_couple_tangents(n, dim, t1, t2);
+    /* the segment's reach (|tangent| < (len + dp_b)/2, |depth| < dp_b, with a step's motion below
+       dp_b/2) is cut into np x np pieces, each within 2h of its centre, where its cells are sought */
+    const double w = len + dpb, reach_n = 1.5 * dpb;
+    int np = 1;
+    while ((dim - 1) * (0.5 * w / np) * (0.5 * w / np) + reach_n * reach_n >= h2 * h2 && np < 64) np++;
+    const int np2 = dim == 2 ? 1 : np;
+    double m = 0;
+    for (int p1 = 0; p1 < np; p1++)
+        for (int p2 = 0; p2 < np2; p2++) {
+            const double lo1 = -0.5 * w + p1 * w / np, lo2 = -0.5 * w + p2 * w / np;
+            const double s1 = lo1 + 0.5 * w / np, s2 = dim == 2 ? 0.0 : lo2 + 0.5 * w / np;
+            const double x[3] = {c[0] + s1 * t1[0] + s2 * t2[0], c[1] + s1 * t1[1] + s2 * t2[1],
+                                 c[2] + s1 * t1[2] + s2 * t2[2]};
+            vres_cell_range nb[27];
+            const int nc = vres_cells_neighbours(&D->cells, x, nb);
+            for (int q = 0; q < nc; q++)
+                for (size_t b = nb[q].begin; b < nb[q].end; b++) {
+                    if (!vres_type_is_fluid(D->type[b])) continue;
+                    double d[3], d0[3];
+                    for (int a = 0; a < 3; a++) {
+                        d[a] = D->pos[3 * b + a] + nb[q].shift[a] - c[a];
+                        d0[a] = D->pos0[3 * b + a] + nb[q].shift[a] - (c[a] - vbox[a] * dt);
+                    }
+                    if (dim == 2) d[1] = d0[1] = 0;
+                    const double u1 = d[0] * t1[0] + d[1] * t1[1] + d[2] * t1[2];
+                    const double u2 = dim == 2 ? 0.0 : d[0] * t2[0] + d[1] * t2[1] + d[2] * t2[2];
+                    /* counted once: by the piece whose tangential span holds it */
+                    if (u1 < lo1 || u1 >= lo1 + w / np || (dim == 3 && (u2 < lo2 || u2 >= lo2 + w / np))) continue;
+                    const double cover = vres_couple_cover(u1, dpb, len) * (dim == 2 ? 1.0 : vres_couple_cover(u2, dpb, len));
+                    if (cover <= 0) continue;
+                    const double sn = -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
+                    const double s0 = -(d0[0] * n[0] + d0[1] * n[1] + d0[2] * n[2]);
+                    m += D->mass[b] * cover * (vres_couple_slab(sn, dpb) - vres_couple_slab(s0, dpb));
+                }
+        }
+    return m;
+}
+
+/* The position (m) of the particle a segment at p with normal n creates: dp/2 inside the band. */
+VRES_HD static inline void vres_couple_birth(const double p[3], const double n[3], double dp, double out[3])
+{
+    for (int a = 0; a < 3; a++) out[a] = p[a] - 0.5 * dp * n[a];
+}
+
 /* Update segment s over dt (s): interpolate the donor there, gate, accumulate (dp the receiving
- * domain's spacing, m). */
+ * domain's spacing, m); BALANCED also records this update's interpolated increment and crossing
+ * count for the balance, CROSSING accumulates the crossing count instead. */
 VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *donors, vres_segments S,
                                                    vres_couple_walls w, double dp, double dt)
 {
@@ -160,14 +273,25 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
     S.rho[s] = (float)r.rho;
     for (int a = 0; a < 3; a++) S.vel[3 * s + a] = (float)r.v[a];
     const double dpmin = dp < D->dp ? dp : D->dp;
+    if (S.method == VRES_FLUX_BALANCED) {
+        S.dm[s] = 0;
+        S.cross[s] = vres_couple_crossing(D, p, n, S.area[s], &S.vbox[3 * s], dt);
+    }
     if (vres_couple_wall_gate(&w, p, n, dp)) {
         S.mass[s] = 0;
         S.state[s] = VRES_SEG_WALL;
-    } else if (!vres_couple_flux_gate(&r, D->cells.dim, dpmin)) {
+    } else if (S.method == VRES_FLUX_CROSSING) {
+        S.mass[s] = vres_couple_accumulate(S.mass[s], vres_couple_crossing(D, p, n, S.area[s], &S.vbox[3 * s], dt));
+        S.state[s] = VRES_SEG_FLUX;
+    } else if (!vres_couple_flux_gate(&r, D->cells.dim, S.method == VRES_FLUX_BALANCED ? 0.0 : dpmin)) {
+        /* BALANCED: the divergence alone gates (no near-donor exception): a thin front's mass is
+           counted by its crossing and created where the layer behind it is thick enough */
         S.state[s] = VRES_SEG_NOGATE;
     } else {
-        S.mass[s] = vres_couple_accumulate(S.mass[s], vres_couple_dm(r.rho, r.v, &S.vbox[3 * s], n, S.area[s], dt));
+        const double dm = vres_couple_dm(r.rho, r.v, &S.vbox[3 * s], n, S.area[s], dt);
+        S.mass[s] = vres_couple_accumulate(S.mass[s], dm);
         S.state[s] = VRES_SEG_FLUX;
+        if (S.method == VRES_FLUX_BALANCED) S.dm[s] = dm;
     }
 }
 
@@ -175,12 +299,6 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
 VRES_PARTICLE_LOOP(vres_couple_segment_loop, vres_couple_segment_one,
                    (const vres_donor *donors, vres_segments S, vres_couple_walls w, double dp, double dt),
                    (donors, S, w, dp, dt))
-
-/* The position (m) of the particle a segment at p with normal n creates: dp/2 inside the band. */
-VRES_HD static inline void vres_couple_birth(const double p[3], const double n[3], double dp, double out[3])
-{
-    for (int a = 0; a < 3; a++) out[a] = p[a] - 0.5 * dp * n[a];
-}
 
 /* Buffer particle i of domain k takes the density and velocity of the domain whose fluid feeds
  * its band (its region, region.h), interpolated at its position; with too little support there

@@ -106,7 +106,7 @@ size_t vres_segments_layout(int dim, const double lo[3], const double hi[3], dou
                     double sgn = (side ? 1.0 : -1.0) * (inward ? -1.0 : 1.0);
                     for (int b = 0; b < 3; b++) f->normal[3 * k + b] = b == a ? sgn : 0;
                     f->area[k] = area;
-                    f->mass[k] = 0;
+                    f->mass[k] = 0, f->crossed[k] = 0;
                     added++;
                 }
         }

@@ -417,6 +417,7 @@ static void cpu_donor_view(vres_backend *b, vres_donor *v)
     vres_domain *d = x->d;
     v->cells = x->cells;
     v->pos = d->pos, v->vel = d->vel, v->rho = d->rho, v->mass = d->mass_p, v->type = d->type;
+    v->pos0 = x->start.pos; /* in slot order after a sort that carried the step's start */
 }
 
 /* Classify every particle by region; events counted, deletions marked. */

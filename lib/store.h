@@ -163,6 +163,8 @@ typedef struct vres_iface {
     double *normal; /* [3n] unit normal, pointing away from the receiving domain's fluid */
     double *area;   /* [n] length (2D, m) or area (3D, m^2) of the segment: dp_recv^(dim-1) */
     double *mass;   /* [n] mass accumulated and not yet turned into a particle (kg) */
+    double *crossed; /* [n] mass the donor's particles brought across the segment, less what it created (kg):
+                        what the balanced flux keeps the interface's mass to (solver_couple.c) */
 } vres_iface;
 
 /* Everything one store file holds. */

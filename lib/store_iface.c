@@ -35,6 +35,7 @@ void vres_iface_reserve(vres_iface *f, size_t n)
     f->normal = vres_xrealloc(f->normal, sizeof *f->normal * 3 * (n ? n : 1));
     f->area = vres_xrealloc(f->area, sizeof *f->area * (n ? n : 1));
     f->mass = vres_xrealloc(f->mass, sizeof *f->mass * (n ? n : 1));
+    f->crossed = vres_xrealloc(f->crossed, sizeof *f->crossed * (n ? n : 1));
 }
 
 void vres_iface_free(vres_iface *f)
@@ -43,6 +44,7 @@ void vres_iface_free(vres_iface *f)
     free(f->normal);
     free(f->area);
     free(f->mass);
+    free(f->crossed);
     memset(f, 0, sizeof *f);
 }
 
@@ -137,6 +139,7 @@ static int write_iface(hid_t g, const vres_iface *fc, size_t i)
     rc |= put_rows(ig, "Normal", fc->n, 3, fc->normal);
     rc |= put_rows(ig, "Area", fc->n, 1, fc->area);
     rc |= put_rows(ig, "Mass", fc->n, 1, fc->mass);
+    if (fc->crossed) rc |= put_rows(ig, "Crossed", fc->n, 1, fc->crossed);
     if (H5Gclose(ig) < 0) rc = -1;
     return rc ? -1 : 0;
 }
@@ -341,6 +344,9 @@ static void read_iface(ectx *e, hid_t g, vres_store *s, size_t i)
         fc->normal = get_rows(e, ig, path, "Normal", fc->n, 3);
         fc->area = get_rows(e, ig, path, "Area", fc->n, 1);
         fc->mass = get_rows(e, ig, path, "Mass", fc->n, 1);
+        /* Crossed is written by vres-run; a partition store has none yet: zero */
+        fc->crossed = H5Lexists(ig, "Crossed", H5P_DEFAULT) > 0 ? get_rows(e, ig, path, "Crossed", fc->n, 1)
+                                                                 : vres_xcalloc(fc->n ? fc->n : 1, sizeof *fc->crossed);
         for (size_t j = 0; !e->bad && j < fc->n; j++) {
             const double *v = &fc->normal[3 * j];
             if (fabs(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) - 1) > 1e-6)
