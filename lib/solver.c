@@ -243,9 +243,14 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s%s", t, step - step_start,
                   vres_run_wall_now() - clk.start, r->next_snap - nsnap0, f->dir,
                   r->nexcluded > 0 ? " (particles excluded: see excluded.tsv)" : "");
-    if (rc == VRES_RUN_OK && set->couple)
-        vres_info("coupling of the %zu domains: %.3g s, %.1f%% of the time loop", set->n, vres_couple_wall(set->couple),
-                  100 * vres_couple_wall(set->couple) / fmax(vres_run_wall_now() - clk.start, 1e-9));
+    if (rc == VRES_RUN_OK && set->couple) {
+        const double pc = 100 / fmax(vres_run_wall_now() - clk.start, 1e-9); /* percent of the time loop per second */
+        const vres_couple_parts cp = vres_couple_wall_parts(set->couple);
+        vres_info("coupling of the %zu domains: %.3g s, %.1f%% of the time loop (interpolation %.1f%%, flux %.1f%%, "
+                  "classification and creation %.1f%%, sorts and compaction %.1f%%)",
+                  set->n, vres_couple_wall(set->couple), pc * vres_couple_wall(set->couple), pc * cp.interp,
+                  pc * cp.flux, pc * cp.create, pc * cp.compact);
+    }
     free(m.mv0);
     free(m.mv);
     return rc;

@@ -56,12 +56,19 @@ struct vres_couple {
     double mass0;         /* total fluid mass when the run began (kg); < 0 until the first report */
     int fresh;            /* 1 when the buffers hold their donors' values for the current positions */
     double wall;          /* wall-clock time spent in the coupling since it was opened (s) */
+    vres_couple_parts part; /* that time by part (s), the start's excluded as from wall */
     int flux;             /* how segments measure mass: VRES_FLUX_BALANCED, or (VRES_FLUX=interp|crossing) the others */
 };
 
 double vres_couple_wall(const vres_couple *C)
 {
     return C ? C->wall : 0;
+}
+
+vres_couple_parts vres_couple_wall_parts(const vres_couple *C)
+{
+    vres_couple_parts z = {0, 0, 0, 0};
+    return C ? C->part : z;
 }
 
 /* Collect domain k's segments from the store's interfaces whose receiving domain is k. */
@@ -271,10 +278,15 @@ static int buffers(vres_couple *C, run_set *set, int del)
     for (int k = 0; k < C->ndom; k++) {
         size_t n_ev[VRES_EV_COUNT] = {0};
         double m_ev[VRES_EV_COUNT] = {0};
+        double t0 = vres_run_wall_now();
         set->b[k].couple_buffers(&set->b[k], C->reg, C->ndom, k, C->donors, n_ev, m_ev);
+        double t1 = vres_run_wall_now();
+        C->part.interp += t1 - t0;
         if (!del) continue;
         count_events(&C->d[k], n_ev, m_ev);
-        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
+        int rc = drop_marked(&set->b[k], n_ev);
+        C->part.compact += vres_run_wall_now() - t1;
+        if (rc != 0) return -1;
     }
     return 0;
 }
@@ -298,9 +310,11 @@ int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
  * 0 or -1. */
 static int sort_domains(vres_couple *C, run_set *set, int carry)
 {
-    for (int k = 0; k < C->ndom; k++)
-        if (set->b[k].sort(&set->b[k], carry) != 0) return -1;
-    return 0;
+    double t0 = vres_run_wall_now();
+    int rc = 0;
+    for (int k = 0; k < C->ndom && rc == 0; k++) rc = set->b[k].sort(&set->b[k], carry) != 0 ? -1 : 0;
+    C->part.compact += vres_run_wall_now() - t0;
+    return rc;
 }
 
 /* Classify every domain's particles by region (type changes, deletions counted and done); with
@@ -310,10 +324,16 @@ static int classify_domains(vres_couple *C, run_set *set, int births)
     for (int k = 0; k < C->ndom; k++) {
         size_t n_ev[VRES_EV_COUNT] = {0};
         double m_ev[VRES_EV_COUNT] = {0};
+        double t0 = vres_run_wall_now();
         set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
         count_events(&C->d[k], n_ev, m_ev);
-        if (drop_marked(&set->b[k], n_ev) != 0) return -1;
-        if (births && create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass) != 0) return -1;
+        double t1 = vres_run_wall_now();
+        int rc = drop_marked(&set->b[k], n_ev);
+        double t2 = vres_run_wall_now();
+        if (rc == 0 && births) rc = create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass);
+        C->part.create += (t1 - t0) + (vres_run_wall_now() - t2);
+        C->part.compact += t2 - t1;
+        if (rc != 0) return -1;
     }
     return 0;
 }
@@ -325,6 +345,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     if (!C) return uncoupled(set);
     double t0 = vres_run_wall_now();
     if (sort_domains(C, set, 1) != 0) return -1;
+    double tf = vres_run_wall_now();
     refresh_donors(C, set);
     /* the segments see every domain at the new time, before any type changes */
     for (int k = 0; k < C->ndom; k++) {
@@ -335,6 +356,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
         set->b[k].couple_segments(&set->b[k], C->donors, &S, cd->nseg, set->dom[k].dp, dt);
         if (C->flux == VRES_FLUX_BALANCED) balance(cd, C->ndom);
     }
+    C->part.flux += vres_run_wall_now() - tf;
     if (classify_domains(C, set, 1) != 0 || sort_domains(C, set, 0) != 0 || buffers(C, set, 1) != 0) return -1;
     C->fresh = 1;
     C->wall += vres_run_wall_now() - t0;
@@ -346,9 +368,11 @@ int vres_couple_start(run_set *set, const run_cfg *c)
     (void)c;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
+    const vres_couple_parts keep = C->part; /* the start is not in wall: nor in its parts */
     if (sort_domains(C, set, 0) != 0 || classify_domains(C, set, 0) != 0 || sort_domains(C, set, 0) != 0 ||
         buffers(C, set, 1) != 0)
         return -1;
+    C->part = keep;
     C->fresh = 1;
     return 0;
 }

@@ -31,6 +31,16 @@ void vres_couple_close(vres_couple *C);
 /* Wall-clock seconds the coupling has taken so far (its interpolations, fluxes, type changes,
  * creations, deletions and the sorts they need); 0 for NULL. */
 double vres_couple_wall(const vres_couple *C);
+/* Parts of that wall-clock time (s), each timed where it runs; their sum is at most the total
+ * (the rest: donor views, loop overhead). */
+typedef struct vres_couple_parts {
+    double interp;  /* buffer passes: the donors' values interpolated onto the buffer particles */
+    double flux;    /* segment passes (donor views, interpolated flux, crossing count) and the balance */
+    double create;  /* classification by region (type changes) and creation at the segments */
+    double compact; /* sorts of all domains and removal of the particles marked for deletion */
+} vres_couple_parts;
+/* The parts of vres_couple_wall (all 0 for NULL). */
+vres_couple_parts vres_couple_wall_parts(const vres_couple *C);
 
 /* Before the first step of a new run (not a restart, whose snapshot holds the coupled state):
  * classify every domain's fluid and buffer particles by region and give the buffers their
