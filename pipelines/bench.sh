@@ -19,11 +19,25 @@
 #   VRES_LOOP=general, see vres-run(1)) on the same scene and threads: the dam break (DBC
 #   walls, Fourtakas diffusion, artificial viscosity) and the Taylor-Green vortex (no walls,
 #   no diffusion, laminar viscosity, periodic).
+# Table 4: the two-domain dam break (cases/dambreak2d through vres-gencase --dp DPVRES |
+#   vres-partition: root dp DPVRES, the box over the downstream wall at DPVRES/2), on the CPU
+#   backend at 1 and 2 threads, continued (--restart) from its state at WARMVRES s, after the
+#   front's impact, when water crosses the interface (that warm-up run is made once, at 2
+#   threads, and kept), for about STEPSVRES steps: particles (every domain's fluid, buffer and
+#   walls at the start of the measured run), steps, particle-steps per second (run.tsv), and
+#   the coupling's share of the time loop with its parts (interpolation onto the buffers,
+#   segment flux, classification and creation, sorts and compaction), read from vres-run's
+#   last stderr line ("coupling of the N domains: ..."); for reference, the same case in
+#   single resolution (vres-partition --single) at the box's dp, from its own state at
+#   WARMVRES s.
 #
 #   bash pipelines/bench.sh [OUTDIR]      (default build/bench; the stores are kept there and
 #                                          reused, the run directories are replaced)
 # Environment: STEPS (60), REPEATS (3), STEPS3D (4), BENCH3D (1), MEM3D_GIB (1: the 3D run
-# holds about 0.3 GB) and VRES_BIN (the tools' directory, default bin/).
+# holds about 0.3 GB), DPVRES (0.01), WARMVRES (0.5), STEPSVRES (1000), BENCH_TABLES (the
+# tables to make, of "2d 3d loop vres"; default all) and VRES_BIN (the tools' directory,
+# default bin/). The coupled runs set OMP_WAIT_POLICY=passive unless it is set: on a busy
+# machine spinning threads only steal time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-build/bench}
@@ -34,9 +48,17 @@ REPEATS=${REPEATS:-3}
 STEPS3D=${STEPS3D:-4}
 BENCH3D=${BENCH3D:-1}
 MEM3D_GIB=${MEM3D_GIB:-1}
+DPVRES=${DPVRES:-0.01}
+WARMVRES=${WARMVRES:-0.5}
+STEPSVRES=${STEPSVRES:-1000}
+BENCH_TABLES=${BENCH_TABLES:-2d 3d loop vres}
 DB=cases/dsph_dambreak2d/dambreak2d_Def.xml
 DB3=cases/bench_dambreak3d/bench_dambreak3d_Def.xml
 TG=cases/taylor_green2d/taylor_green2d_Def.xml
+DBV=cases/dambreak2d/dambreak2d_Def.xml
+
+# want TABLE: true when BENCH_TABLES names TABLE
+want() { case " $BENCH_TABLES " in *" $1 "*) return 0 ;; esac; return 1; }
 
 # gen NAME XML [vres-gencase options...]: the store $out/NAME.h5, made again only when the
 # XML is newer or the options differ from those it was made with ($out/NAME.args)
@@ -101,6 +123,7 @@ printf '# vres-run throughput, Symplectic; host: %s, %s cores, %s\n' "$(uname -m
 printf '# %s\n' "$("$BIN/vres-run" --version)"
 printf '# peer: DualSPHysics 5.4 (CPU) on dambreak2d-20k at 2 threads: 0.98 us per particle-step\n'
 
+if want 2d; then
 printf '\n# 2D dam break (%s), about %s steps, median of %s runs\n' "$DB" "$STEPS" "$REPEATS"
 printf "$header"
 for spec in "dambreak2d-20k 0.01" "dambreak2d-200k 0.0032"; do
@@ -114,7 +137,9 @@ for spec in "dambreak2d-20k 0.01" "dambreak2d-200k 0.0032"; do
         row "$name" "$dp" "$n" "$th" $f
     done
 done
+fi
 
+if want 3d; then
 printf '\n# 3D dam break (%s), about %s steps, one run\n' "$DB3" "$STEPS3D"
 avail=$(awk '/^MemAvailable:/ {printf "%d", $2 / 1048576}' /proc/meminfo)
 if [ "$BENCH3D" != 1 ]; then
@@ -131,9 +156,12 @@ else
     f=$(rate dambreak3d-1m "$tmax" "$th" specialised 1)
     row dambreak3d-1m "$dp" "$n" "$th" $f
 fi
+fi
 
+if want loop; then
 printf '\n# specialised loop (the scene'"'"'s modules only) against the general loop (VRES_LOOP=general)\n'
 printf 'case\tparticles\tthreads\tloop\tparticle_steps_per_s\tus_per_particle_step\tspeedup\n'
+gen dambreak2d-20k "$DB" --dp 0.01
 gen tg2d "$TG" --dp 0.01
 for name in dambreak2d-20k tg2d; do
     n=$(particles "$out/$name.h5")
@@ -146,3 +174,95 @@ for name in dambreak2d-20k tg2d; do
             printf "%s\t%d\t%d\tspecialised\t%.4g\t%.3f\t%.2f\n", name, n, th, s, 1e6 / s, s / g }'
     done
 done
+fi
+
+# genpart NAME XML DP [vres-partition options...]: the partition $out/NAME.h5 of XML drawn at
+# root dp DP (vres-gencase | vres-partition), made again as gen does
+genpart() {
+    local name=$1 xml=$2 dp=$3
+    shift 3
+    local args="$xml --dp $dp | $*"
+    if [ ! -f "$out/$name.h5" ] || [ "$xml" -nt "$out/$name.h5" ] ||
+        [ "$(cat "$out/$name.args" 2>/dev/null)" != "$args" ]; then
+        "$BIN/vres-gencase" -q --dp "$dp" "$xml" | "$BIN/vres-partition" -q "$@" - -o "$out/$name.h5"
+        printf '%s\n' "$args" >"$out/$name.args"
+    fi
+}
+
+# col RUNDIR NAME: column NAME of the last line of RUNDIR/run.tsv
+col() {
+    awk -F'\t' -v k="$2" 'NR == 1 {sub(/^# */, ""); for (i = 1; i <= NF; i++) c[$i] = i; next}
+                          !/^#/ {v = $(c[k])} END {print v}' "$1/run.tsv"
+}
+
+# warm NAME T: $out/warm-NAME, store NAME run to T (one snapshot there, snap_00001.h5), made
+# again when the store is newer or T differs
+warm() {
+    local name=$1 t=$2 wd=$out/warm-$1 th
+    th=$(($(nproc) < 2 ? 1 : 2))
+    if [ ! -f "$wd/snap_00001.h5" ] || [ "$out/$name.h5" -nt "$wd/snap_00001.h5" ] ||
+        [ "$(cat "$wd.args" 2>/dev/null)" != "$t" ]; then
+        rm -rf "$wd"
+        OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} OMP_NUM_THREADS=$th "$BIN/vres-run" -q --device cpu --threads "$th" --tmax "$t" --tout "$t" \
+            "$out/$name.h5" -o "$wd"
+        printf '%s\n' "$t" >"$wd.args"
+    fi
+}
+
+# couple_parts ERRFILE: "total interp flux create compact" (percent of the time loop) from
+# vres-run's "coupling of the N domains" line in ERRFILE ("- - - - -" without one)
+couple_parts() {
+    awk '/coupling of the [0-9]+ domains:/ {
+            t = $0; sub(/% of the time loop.*/, "", t); sub(/.* /, "", t)
+            n = split("interpolation|flux|classification and creation|sorts and compaction", k, "|")
+            r = t
+            for (i = 1; i <= n; i++) {
+                v = $0; if (!sub(".*[(,] ?" k[i] " ", "", v)) v = "-"; sub(/%.*/, "", v); r = r " " v
+            }
+            line = r
+         }
+         END {print (line == "" ? "- - - - -" : line)}' "$1"
+}
+
+# rate_restart NAME THREADS NSTEPS RUNS: "steps particle_steps_per_s total interp flux create
+# compact" of the median of RUNS runs (by particle-steps per second) continuing
+# $out/warm-NAME's snapshot for about NSTEPS steps (its last time step's worth each)
+rate_restart() {
+    local name=$1 th=$2 nsteps=$3 runs=$4 wd=$out/warm-$1 t0 s0 tmax rd
+    t0=$(col "$wd" time_s)
+    s0=$(col "$wd" step)
+    tmax=$(awk -v t="$t0" -v n="$nsteps" -v dt="$(col "$wd" dt_s)" 'BEGIN {printf "%.9g", t + n * dt}')
+    for r in $(seq "$runs"); do
+        rd=$out/run-$name-t$th-$r
+        rm -rf "$rd"
+        mkdir -p "$rd"
+        OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} OMP_NUM_THREADS=$th "$BIN/vres-run" --device cpu \
+            --threads "$th" --tmax "$tmax" --tout "$(awk -v a="$tmax" -v b="$t0" 'BEGIN {print a - b}')" \
+            --restart "$wd/snap_00001.h5" -o "$rd" 2>"$rd.err"
+        echo "$(($(col "$rd" step) - s0)) $(col "$rd" particle_steps_per_s) $(couple_parts "$rd.err")"
+    done | sort -g -k2 | awk -v m="$(((runs + 1) / 2))" 'NR == m'
+}
+
+if want vres; then
+    fine=$(awk -v d="$DPVRES" 'BEGIN {print d / 2}')
+    printf '\n# two-domain dam break (%s, vres-partition; box dpratio 2) against single resolution at the box'"'"'s dp,\n' "$DBV"
+    printf '# CPU backend, from the state at %s s, about %s steps, median of %s runs; coupling_pct and its parts:\n' \
+        "$WARMVRES" "$STEPSVRES" "$REPEATS"
+    printf '# percent of the time loop (vres-run'"'"'s "coupling of the N domains" line)\n'
+    printf 'case\tdp_m\tparticles\tthreads\tsteps\tparticle_steps_per_s\tus_per_particle_step\tcoupling_pct\tinterpolation_pct\tflux_pct\tcreation_pct\tcompaction_pct\n'
+    genpart dambreak2d-vres "$DBV" "$DPVRES"
+    genpart dambreak2d-fine "$DBV" "$fine" --single
+    for spec in "dambreak2d-vres $DPVRES/$fine" "dambreak2d-fine $fine"; do
+        set -- $spec
+        name=$1 dp=$2
+        warm "$name" "$WARMVRES"
+        n=$(particles "$out/warm-$name/snap_00001.h5")
+        for th in 1 2; do
+            f=$(rate_restart "$name" "$th" "$STEPSVRES" "$REPEATS")
+            awk -v name="$name" -v dp="$dp" -v n="$n" -v th="$th" -v f="$f" 'BEGIN {
+                split(f, v, " ")
+                printf "%s\t%s\t%d\t%d\t%d\t%.4g\t%.3f\t%s\t%s\t%s\t%s\t%s\n", name, dp, n, th, v[1], v[2],
+                    (v[2] > 0 ? 1e6 / v[2] : 0), v[3], v[4], v[5], v[6], v[7] }'
+        done
+    done
+fi
