@@ -41,6 +41,7 @@ typedef struct plan {
     int n;               /* domains */
     pdom *d;             /* [n] domains, parents first */
     int nerr;            /* problems found */
+    double dmin[3], dmax[3]; /* the simulation domain the boxes are cut to (sim_extent) */
 } plan;
 
 /* "bufferbox K (line L)" for messages about domain k (its box's 1-based index in the case). */
@@ -143,6 +144,23 @@ static int box_depth(const vres_store *s, int b)
     return d;
 }
 
+/* The simulation domain that the boxes are cut to: the store's, except on a periodic axis whose
+ * domain is the particles' extent (origin auto), where the period runs half a root dp further on
+ * each side (vres-run's periodic_box, lib/solver_config.c): a box reaching a periodic edge then
+ * reaches the period's end, so the child's fluid fills its periodic seam instead of leaving its
+ * outermost rows of particles to a buffer band on an edge the parent has no fluid beyond. */
+static void sim_extent(plan *p)
+{
+    const vres_store *s = p->s;
+    const vres_param *per = vres_params_find(&s->params, "periodic");
+    const vres_param *dom = vres_params_find(&s->params, "domain_min");
+    int fixed = dom && dom->origin && strcmp(dom->origin, "auto") != 0;
+    for (int a = 0; a < 3; a++) {
+        double g = !fixed && per && per->n == 3 && per->v[a] != 0 ? 0.5 * s->dom[0].dp : 0;
+        p->dmin[a] = s->domain_min[a] - g, p->dmax[a] = s->domain_max[a] + g;
+    }
+}
+
 /* The domains: the root, then the kept boxes (parents before children) with the options. */
 static void choose(plan *p, const vres_part_opts *o)
 {
@@ -170,8 +188,11 @@ static void choose(plan *p, const vres_part_opts *o)
         d->buffsizeh = o->set_buffsizeh ? o->buffsizeh : x->buffsizeh;
         d->overlappingh = o->set_overlappingh ? o->overlappingh : x->overlappingh;
         for (int a = 0; a < 3; a++) {
-            d->lo[a] = fmax(x->point[a], s->domain_min[a]);
-            d->hi[a] = fmin(x->point[a] + x->size[a], s->domain_max[a]);
+            /* vres-gencase cut the box to the store's domain: a face on its edge is on the period's */
+            double tie = TIE * r->dp;
+            d->lo[a] = x->point[a] <= s->domain_min[a] + tie ? p->dmin[a] : fmax(x->point[a], p->dmin[a]);
+            d->hi[a] = x->point[a] + x->size[a] >= s->domain_max[a] - tie ? p->dmax[a]
+                                                                            : fmin(x->point[a] + x->size[a], p->dmax[a]);
         }
     }
     free(dom_of);
@@ -197,8 +218,8 @@ static int plan_child(plan *p, int k)
             r->hole_lo[a] = r->hole_hi[a] = r->inner_lo[a] = r->inner_hi[a] = s->domain_min[a];
             continue;
         }
-        if (d->lo[a] <= s->domain_min[a] + TIE * d->dp) d->open |= VRES_FACE(a, 0);
-        if (d->hi[a] >= s->domain_max[a] - TIE * d->dp) d->open |= VRES_FACE(a, 1);
+        if (d->lo[a] <= p->dmin[a] + TIE * d->dp) d->open |= VRES_FACE(a, 0);
+        if (d->hi[a] >= p->dmax[a] - TIE * d->dp) d->open |= VRES_FACE(a, 1);
         /* the box on the parent's lattice first, then on its own: a face on a parent node would
            otherwise leave the parent's hole half a parent cell wider than the child's fluid, a
            strip where neither domain has fluid (the parent's buffers there have little child
@@ -485,9 +506,9 @@ static void build_ifaces(plan *p)
     for (int k = 1; k < p->n; k++) {
         const pdom *d = &p->d[k], *q = &p->d[d->parent];
         vres_iface *f = vres_store_add_iface(s, k, d->parent);
-        vres_segments_layout(p->dim, d->reg.buff_lo, d->reg.buff_hi, d->dp, 0, 0, s->domain_min, s->domain_max, f);
+        vres_segments_layout(p->dim, d->reg.buff_lo, d->reg.buff_hi, d->dp, 0, 0, p->dmin, p->dmax, f);
         f = vres_store_add_iface(s, d->parent, k);
-        vres_segments_layout(p->dim, d->reg.inner_lo, d->reg.inner_hi, q->dp, 1, d->open, s->domain_min, s->domain_max, f);
+        vres_segments_layout(p->dim, d->reg.inner_lo, d->reg.inner_hi, q->dp, 1, d->open, p->dmin, p->dmax, f);
     }
 }
 
@@ -516,7 +537,8 @@ int vres_partition(vres_store *s, const vres_part_opts *o)
                    s->name ? s->name : "store", s->ndomains);
         return -1;
     }
-    plan P = {s, s->dim, 0, NULL, 0}, *p = &P;
+    plan P = {s, s->dim, 0, NULL, 0, {0, 0, 0}, {0, 0, 0}}, *p = &P;
+    sim_extent(p);
     choose(p, o);
     check_params(p);
     plan_root(p);

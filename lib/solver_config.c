@@ -57,7 +57,7 @@ static void not_impl(int *bad, const char *name, double v, const char *what, con
  * periodic; its period is the simulation domain's length along it plus dp when that domain is
  * the particles' extent (origin auto: the lattice then repeats with its spacing across the
  * boundary, as DualSPHysics' map limits with periodic axes), and the domain's length when the
- * case fixed it. Shifted periodicity (XPeriodicIncZ...) is refused. Every domain has the
+ * case fixed it, the same for every domain (the root's dp). Shifted periodicity (XPeriodicIncZ...) is refused. Every domain has the
  * simulation domain's box for now (a sub-domain's own, its region with its buffer band, comes
  * with the coupling). 0, or -1 after printing why. */
 static int periodic_box(const vres_store *s, run_dom *c)
@@ -67,7 +67,9 @@ static int periodic_box(const vres_store *s, run_dom *c)
     const vres_param *per = vres_params_find(&s->params, "periodic");
     const vres_param *dom = vres_params_find(&s->params, "domain_min");
     int fixed = dom && dom->origin && strcmp(dom->origin, "auto") != 0;
-    double half = fixed ? 0 : 0.5 * c->dp;
+    /* the root's dp: every domain shares the root's period (a child's own dp would give it a
+       shorter one, and a box reaching a periodic edge would wrap its particles short of it) */
+    double half = fixed ? 0 : 0.5 * s->dom[0].dp;
     int bad = 0;
     for (int a = 0; a < 3; a++) {
         c->periodic[a] = per && per->n == 3 && per->v[a] != 0;
