@@ -237,8 +237,12 @@ VRES_HD static inline double vres_couple_crossing(const vres_donor *D, const dou
                     if (!vres_type_is_fluid(D->type[b])) continue;
                     double d[3], d0[3];
                     for (int a = 0; a < 3; a++) {
+                        /* the step's displacement, less a period where the particle wrapped */
+                        double u = D->pos[3 * b + a] - D->pos0[3 * b + a];
+                        const double L = D->cells.period[a];
+                        if (L > 0) u -= L * floor(u / L + 0.5);
                         d[a] = D->pos[3 * b + a] + nb[q].shift[a] - c[a];
-                        d0[a] = D->pos0[3 * b + a] + nb[q].shift[a] - (c[a] - vbox[a] * dt);
+                        d0[a] = d[a] - u + vbox[a] * dt;
                     }
                     if (dim == 2) d[1] = d0[1] = 0;
                     const double u1 = d[0] * t1[0] + d[1] * t1[1] + d[2] * t1[2];

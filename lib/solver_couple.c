@@ -1,10 +1,10 @@
 /* solver_couple.c - the variable-resolution coupling of a run's domains (DESIGN 5; the
  * per-particle and per-segment physics is kernels/couple.h, run by each backend). The time loop
  * (solver.c) calls it at two points of each step:
- *   - after every sort of all domains (the step's start, and mid-step after the predictor):
- *     each domain's buffer particles take the density and velocity of their donor's fluid
- *     (vres_couple_buffers); right after an exchange (and at a restart, whose snapshot holds
- *     them) they already have them, and nothing is done;
+ *   - after the sort of all domains at the step's start: each domain's buffer particles take
+ *     the density and velocity of their donor's fluid (vres_couple_buffers); right after an
+ *     exchange (and at a restart, whose snapshot holds them) they already have them, and
+ *     nothing is done, so the buffers are interpolated once per step (in the exchange);
  *   - after the corrector, every domain at the new time (vres_couple_exchange): the interface
  *     segments accumulate the mass the donors' fluid brings over dt, fluid and buffer particles
  *     change type by region, particles past a band's outer edge are deleted, each segment

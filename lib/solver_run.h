@@ -65,8 +65,8 @@ char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu);
 
 /* ---- solver_couple.c: the hooks of the coupling between domains ---- */
 
-/* After the sort of every domain (at the step's start, before its state is kept, and mid-step
- * after the predictor): each domain's buffer particles get their velocity and density
+/* After the sort of every domain at the step's start, before its state is kept (not mid-step:
+ * the buffers keep their values through the step): each domain's buffer particles get their velocity and density
  * interpolated from the sorted fluid of their donor domains (never from their buffers or
  * walls). Does nothing with one domain. 0, or -1 after printing why. */
 int vres_couple_buffers(run_set *set, const run_cfg *c, double t);

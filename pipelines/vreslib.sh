@@ -16,6 +16,13 @@ VRES_ROOT=${VRES_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}
 VRES_BIN=${VRES_BIN:-$VRES_ROOT/bin}
 VRES_ME=${VRES_ME:-$(basename "$0")}
 
+# need_h5py: make "python3" one with h5py and numpy (setup.sh installs Debian's): when the one
+# first on PATH lacks them (a pyenv or conda python) and /usr/bin's has them, put /usr/bin first.
+need_h5py() {
+    python3 -c 'import h5py, numpy' 2>/dev/null && return 0
+    /usr/bin/python3 -c 'import h5py, numpy' 2>/dev/null && export PATH=/usr/bin:$PATH
+}
+
 # die MSG...: print "NAME: MSG" on stderr and exit 1.
 die() { echo "$VRES_ME: $*" >&2; exit 1; }
 

@@ -138,7 +138,7 @@ START_TEST(test_segments)
     int32_t donor[NS] = {0, 0, 0, 0};
     float rho[NS], vel[3 * NS];
     uint8_t state[NS];
-    vres_segments G = {pos, nrm, area, donor, vbox, mass, rho, vel, state, VRES_FLUX_INTERP};
+    vres_segments G = {pos, nrm, area, donor, vbox, mass, rho, vel, state, VRES_FLUX_INTERP, NULL, NULL};
     const double dt = 1e-4;
     for (int step = 0; step < 3; step++) vres_couple_segment_loop_cpu(NS, &S.v, G, W, 0.01, dt);
     ck_assert_int_eq(state[0], VRES_SEG_FLUX);
@@ -214,6 +214,69 @@ START_TEST(test_crossing)
     ck_assert_double_eq_tol(sum, 0, 1e-12);
     free(x0), free(start);
     donor_free(&S);
+}
+END_TEST
+
+/* The crossing flux on a periodic axis: a lattice periodic in x over [0, 1) m moving along +x by
+ * 0.4 mm a step and wrapped, re-sorted after every step as a run's exchange does, through segments at x = 0.03 m,
+ * next to the wrap. A particle that wrapped in the step moved a step, not a period: after K
+ * steps the sum is, to rounding, sum_b m_b (slab(s_end) - slab(s_start)) over each particle and
+ * its image a period to the left, from their unwrapped positions. */
+START_TEST(test_crossing_periodic)
+{
+    donor_set S;
+    memset(&S, 0, sizeof S);
+    S.d.parent = -1;
+    for (int i = 0; i < 50; i++)
+        for (int j = 0; j < 15; j++) {
+            double x[3] = {(i + 0.5) * DP, 0, (j + 0.5) * DP};
+            size_t b = vres_domain_push(&S.d, x, VRES_FLUID, 0);
+            S.d.rho[b] = (float)RHO0;
+            S.d.mass_p[b] = RHO0 * DP * DP;
+            S.d.id[b] = b; /* follows each particle through the sorts */
+        }
+    const size_t n = S.d.n;
+    const double lo[3] = {0, 0, -0.1}, hi[3] = {1, 0, 0.5}, h = sqrt(2.0) * DP;
+    const int per[3] = {1, 0, 0};
+    REQUIRE(vres_cells_init(&S.g, 2, 2 * h, lo, hi, per) == 0, "cells init");
+    S.v.o = vres_liu_defaults(vres_wendland_make(2, h), RHO0);
+    S.v.dp = DP;
+    double *x0 = malloc(3 * n * sizeof *x0), *first = malloc(n * sizeof *first);
+    for (size_t b = 0; b < n; b++) first[b] = S.d.pos[3 * b];
+    const double n_[3] = {-1, 0, 0}, vbox[3] = {0, 0, 0}, dpc = 0.01, X = 0.03, step = 0.0004;
+    const int K = 60;
+    double sum = 0;
+    double *tmp = malloc(3 * n * sizeof *tmp);
+    for (int k = 0; k < K; k++) {
+        memcpy(tmp, S.d.pos, 3 * n * sizeof *tmp); /* the step's start */
+        for (size_t b = 0; b < n; b++) {
+            S.d.pos[3 * b] += step;
+            if (S.d.pos[3 * b] >= 1) S.d.pos[3 * b] -= 1; /* the wrap */
+        }
+        /* sorted after the step, the start following (as the exchange's sort carries it) */
+        vres_cells_build(&S.g, S.d.pos, n);
+        for (size_t a = 0; a < n; a++) memcpy(&x0[3 * a], &tmp[3 * S.g.perm[a]], 3 * sizeof *x0);
+        REQUIRE(vres_cells_reorder(&S.g, &S.d) == 0, "cells reorder");
+        S.v.cells = S.g, S.v.pos = S.d.pos, S.v.pos0 = x0;
+        S.v.type = S.d.type, S.v.vel = S.d.vel, S.v.rho = S.d.rho, S.v.mass = S.d.mass_p;
+        for (double z = 0.5 * dpc; z < 0.4; z += dpc) {
+            const double c[3] = {X, 0, z};
+            sum += vres_couple_crossing(&S.v, c, n_, dpc, vbox, 1e-4);
+        }
+    }
+    double want = 0, wrapped = 0;
+    for (size_t b = 0; b < n; b++) {
+        const double a = first[S.d.id[b]], e = a + K * step;
+        for (int img = 0; img < 2; img++)
+            want += S.d.mass_p[b] * (vres_couple_slab(e - img - X, DP) - vres_couple_slab(a - img - X, DP));
+        wrapped += e >= 1;
+    }
+    ck_assert_msg(wrapped >= 15, "no column wrapped (%g particles)", wrapped);
+    ck_assert_msg(want > 15 * RHO0 * DP * DP, "the scene moves too little mass (%g kg)", want);
+    ck_assert_double_eq_tol(sum, want, 1e-12 * want);
+    free(x0), free(first), free(tmp);
+    vres_cells_free(&S.g);
+    vres_domain_free(&S.d);
 }
 END_TEST
 
@@ -311,6 +374,7 @@ int main(void)
     tcase_add_test(tc, test_segments);
     tcase_add_test(tc, test_tangents);
     tcase_add_test(tc, test_crossing);
+    tcase_add_test(tc, test_crossing_periodic);
     tcase_add_test(tc, test_classify);
     tcase_add_test(tc, test_buffers);
     tcase_add_test(tc, test_birth);
