@@ -86,7 +86,8 @@ typedef struct vres_segments {
     float *vel;            /* [3 nseg] the donor's interpolated velocity there (m/s) */
     uint8_t *state;        /* [nseg] VRES_SEG_* of the last update */
     int method;            /* how the mass is measured: VRES_FLUX_BALANCED (default), _INTERP or _CROSSING */
-    double *dm;            /* [nseg] BALANCED: the interpolated increment of the last update (kg), 0 where gated */
+    double *dm;            /* [nseg] BALANCED: the interpolated increment of the last update (kg) where the donor's
+                              fluid fills half its support or more (Shepard sum >= 0.5), else 0: the balance's weights */
     double *cross;         /* [nseg] BALANCED: the donor mass that crossed it in the last update (kg) */
 } vres_segments;
 
@@ -100,6 +101,8 @@ typedef struct vres_segments {
 #define VRES_SEG_FLUX 0     /* accumulated dm (negative for outflow) */
 #define VRES_SEG_NOGATE 1   /* the donor's support is not full (free surface, or no donor): nothing added */
 #define VRES_SEG_WALL 2     /* a wall beside or in front of it: mass reset to zero */
+#define VRES_SEG_WAIT 3     /* BALANCED: accumulated, but a particle of its own domain sits where it would create
+                               one (vres_couple_spot_taken): no creation this step */
 
 /* The mass crossing a segment of normal n (unit) and area (m or m^2) into its band over dt (s)
  * when the donor has density rho (kg/m^3) and velocity v (m/s) there and the segment moves at
@@ -265,6 +268,34 @@ VRES_HD static inline void vres_couple_birth(const double p[3], const double n[3
     for (int a = 0; a < 3; a++) out[a] = p[a] - 0.5 * dp * n[a];
 }
 
+/* 1 when a fluid or buffer particle of the receiving domain lies within dp/2 of where the
+ * segment at p with normal n would create one (dp/2 inside it; dp the receiving spacing, m). A
+ * segment whose mass built up faster than its stream carries its newborns away (the balance
+ * brings it the mass of a thin front that could not create) would otherwise create on its own
+ * last newborn, a step's motion away, step after step: such clumps of newborns were measured to
+ * sink into the floor on cases/dambreak2d. In a steady stream the last newborn is a spacing
+ * away when the next is due, so this does not hold a creation back there. */
+VRES_HD static inline int vres_couple_spot_taken(const vres_couple_walls *w, const double p[3], const double n[3],
+                                                 double dp)
+{
+    double x[3];
+    vres_couple_birth(p, n, dp, x);
+    vres_cell_range nb[27];
+    const int m = vres_cells_neighbours(&w->cells, x, nb), dim = w->cells.dim;
+    const double r2max = 0.25 * dp * dp;
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            if (!vres_type_acts_fluid(w->type[b])) continue;
+            double r2 = 0;
+            for (int a = 0; a < 3; a++) {
+                const double d = dim == 2 && a == 1 ? 0.0 : w->pos[3 * b + a] + nb[c].shift[a] - x[a];
+                r2 += d * d;
+            }
+            if (r2 < r2max) return 1;
+        }
+    return 0;
+}
+
 /* Update segment s over dt (s): interpolate the donor there, gate, accumulate (dp the receiving
  * domain's spacing, m); BALANCED also records this update's interpolated increment and crossing
  * count for the balance, CROSSING accumulates the crossing count instead. */
@@ -295,7 +326,13 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
         const double dm = vres_couple_dm(r.rho, r.v, &S.vbox[3 * s], n, S.area[s], dt);
         S.mass[s] = vres_couple_accumulate(S.mass[s], dm);
         S.state[s] = VRES_SEG_FLUX;
-        if (S.method == VRES_FLUX_BALANCED) S.dm[s] = dm;
+        if (S.method == VRES_FLUX_BALANCED) {
+            /* the balance's corrections go only where the donor's fluid fills at least half the
+               support (its Shepard sum, walls not counted): not to a thin front's few open
+               segments, whose newborns sank into the floor on cases/dambreak2d */
+            S.dm[s] = r.shepard >= 0.5 ? dm : 0.0;
+            if (vres_couple_spot_taken(&w, p, n, dp)) S.state[s] = VRES_SEG_WAIT;
+        }
     }
 }
 

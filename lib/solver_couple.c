@@ -192,10 +192,11 @@ static int drop_marked(vres_backend *b, const size_t *n_ev)
     return n ? b->remove(b, b->marks(b)) : 0;
 }
 
-/* 1 when segment j of cd creates a particle of mass m (kg) now: it holds that mass. */
+/* 1 when segment j of cd creates a particle of mass m (kg) now: it holds that mass, and the spot
+ * where it would be born is free (VRES_SEG_WAIT: not). */
 static int may_create(const couple_dom *cd, size_t j, double m)
 {
-    return cd->mass[j] >= m;
+    return cd->mass[j] >= m && cd->state[j] != VRES_SEG_WAIT;
 }
 
 /* BALANCED: after a segment update, what domain k's segments fed by each donor hold is kept to

@@ -3,9 +3,10 @@
 #
 #   pipelines/front.sh [--dimensionless] RUNDIR
 #
-# Prints a TSV table, one row per snapshot snap_NNNNN.h5 in time order:
+# Prints a TSV table, one row per snapshot snap_NNNNN.h5 in time order (the fluid of every
+# domain of a variable-resolution run, each particle with its own domain's dp):
 #   time_s      simulation time (s), the snapshot's root attribute time
-#   x_left_m    smallest fluid particle x minus dp/2 (m)
+#   x_left_m    smallest fluid particle x minus its dp/2 (m)
 #   x_front_m   largest fluid particle x plus dp/2 (m): the surge front of a dam break
 #   z_bottom_m  smallest fluid particle z minus dp/2 (m)
 #   z_top_m     largest fluid particle z plus dp/2 (m)
@@ -35,12 +36,19 @@ fi
 
 printf '# time_s\tx_left_m\tx_front_m\tz_bottom_m\tz_top_m\n'
 for f in $(snapshots "$d"); do
-    t=$(attr /time "$f") && dp=$(attr /Domains/D0/dp "$f") || die "$f: unreadable"
-    paste <(values /Domains/D0/Type "$f") <(values /Domains/D0/Position "$f" | paste - - -) |
-        awk -v t="$t" -v dp="$dp" -v f="$f" '
-            $1 == 0 { n++; if (n == 1 || $2 < x0) x0 = $2; if (n == 1 || $2 > x1) x1 = $2
-                           if (n == 1 || $4 < z0) z0 = $4; if (n == 1 || $4 > z1) z1 = $4 }
+    t=$(attr /time "$f") && nd=$(domains "$f") || die "$f: unreadable"
+    # every domain's fluid (a variable-resolution run's front lies in whichever domain holds
+    # it), each particle with its own domain's dp as the fifth column
+    for ((k = 0; k < nd; k++)); do
+        dp=$(attr "/Domains/D$k/dp" "$f") || die "$f: no dp in D$k"
+        paste <(values "/Domains/D$k/Type" "$f") <(values "/Domains/D$k/Position" "$f" | paste - - -) |
+            awk -v dp="$dp" '{print $0 "\t" dp}'
+    done |
+        awk -v t="$t" -v f="$f" '
+            $1 == 0 { n++; h = $5 / 2
+                      if (n == 1 || $2 - h < x0) x0 = $2 - h; if (n == 1 || $2 + h > x1) x1 = $2 + h
+                      if (n == 1 || $4 - h < z0) z0 = $4 - h; if (n == 1 || $4 + h > z1) z1 = $4 + h }
             END { if (!n) { print "front.sh: " f ": no fluid particles" > "/dev/stderr"; exit 1 }
-                  printf "%.9g\t%.9g\t%.9g\t%.9g\t%.9g\n", t, x0 - dp/2, x1 + dp/2, z0 - dp/2, z1 + dp/2 }' ||
+                  printf "%.9g\t%.9g\t%.9g\t%.9g\t%.9g\n", t, x0, x1, z0, z1 }' ||
         exit 1
 done
