@@ -205,10 +205,14 @@ void vres_run_progress(const run_cfg *c, const run_clock *clk, double t0, double
     shown = 1;
 }
 
-/* Write the store's state (host copy, at time t, step) as DIR/snap_last_good.h5 and say where.
- * Returns VRES_RUN_UNSTABLE, or VRES_RUN_FAIL when the write fails. */
-static int write_last_good(vres_store *s, const run_cfg *c, const run_resume *r, const char *dir, double t, long step)
+/* Write the store's state (host copy, at time t, step) as DIR/snap_last_good.h5 and say where,
+ * with the coupling's state of set (segment masses, ledger, next free id: none changes between
+ * an exchange and the next step's start, the state written). Returns VRES_RUN_UNSTABLE, or
+ * VRES_RUN_FAIL when the write fails. */
+static int write_last_good(vres_store *s, const run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
+                           double t, long step)
 {
+    if (set->couple) vres_couple_save(set->couple, s);
     char *path = vres_xasprintf("%s/snap_last_good.h5", dir);
     int rc = write_snapshot(s, c, r, path, t, step);
     if (!rc)
@@ -230,7 +234,7 @@ int vres_run_stop_unstable(vres_store *s, run_set *set, const run_cfg *c, const 
     }
     for (size_t j = 0; j < set->n; j++) set->b[j].restore_start(&set->b[j]);
     if (download_all(s, set) != 0) return VRES_RUN_FAIL;
-    return write_last_good(s, c, r, dir, t0, step0);
+    return write_last_good(s, set, c, r, dir, t0, step0);
 }
 /* Open RUNDIR/excluded.tsv for appending (after a restart's earlier lines), with its header
  * when new. 0, or -1 after printing why. */
@@ -321,7 +325,7 @@ int vres_run_after_step(vres_store *s, run_set *set, const run_cfg *c, run_resum
                    "at the start (%.0f excluded)", step, t, nf, c->min_fluid, r->nfluid0, r->nexcluded);
         /* the state after the exclusions is sound: it is the last good one */
         if (download_all(s, set) != 0) return VRES_RUN_FAIL;
-        return write_last_good(s, c, r, f->dir, t, step);
+        return write_last_good(s, set, c, r, f->dir, t, step);
     }
     return VRES_RUN_OK;
 }
