@@ -347,7 +347,8 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
     double t0 = vres_run_wall_now();
-    if (sort_domains(C, set, 1) != 0) return -1;
+    /* the crossing count reads the step's start positions: only then must they follow the sort */
+    if (sort_domains(C, set, C->flux != VRES_FLUX_INTERP) != 0) return -1;
     double tf = vres_run_wall_now();
     refresh_donors(C, set);
     /* the segments see every domain at the new time, before any type changes */

@@ -66,3 +66,12 @@ check() {
 nothing_in() {
     if [ -z "$(ls -A "$1" 2>/dev/null)" ]; then ok "$2"; else notok "$2 (found: $(ls -A "$1" | tr '\n' ' '))"; fi
 }
+
+# tilted_tank: cases/hydrostatic_vres2d under a sideways gravity of 3 m/s^2 (water crosses its
+# interface within 0.1 s), generated as $T/tilt.h5 and partitioned as $T/parts.h5.
+tilted_tank() {
+    sed 's/<gravity x="0"/<gravity x="3"/' "$CASES/hydrostatic_vres2d/hydrostatic_vres2d_Def.xml" >"$T/tilt.xml"
+    grep -q '<gravity x="3"' "$T/tilt.xml" || notok "the sideways gravity is in the case"
+    "$BIN/vres-gencase" -q "$T/tilt.xml" -o "$T/tilt.h5" || notok "gencase the tilted tank"
+    "$BIN/vres-partition" -q "$T/tilt.h5" -o "$T/parts.h5" || notok "partition the tilted tank"
+}

@@ -11,10 +11,7 @@
 # still covers them if the physics changes). At rest nothing of that happens in a short run.
 source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
-sed 's/<gravity x="0"/<gravity x="3"/' "$CASES/hydrostatic_vres2d/hydrostatic_vres2d_Def.xml" >"$T/tilt.xml"
-grep -q '<gravity x="3"' "$T/tilt.xml" || notok "the sideways gravity is in the case"
-"$BIN/vres-gencase" -q "$T/tilt.xml" -o "$T/tilt.h5" || notok "gencase the tilted tank"
-"$BIN/vres-partition" -q "$T/tilt.h5" -o "$T/parts.h5" || notok "partition the tilted tank"
+tilted_tank
 
 # The uninterrupted run: 5 outputs after the start (about 1600 steps).
 expect 0 "uninterrupted coupled run to 0.1 s, 5 outputs" "$RUN" -q --tmax 0.1 --tout 0.02 "$T/parts.h5" -o "$T/a"

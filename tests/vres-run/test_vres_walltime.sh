@@ -8,10 +8,7 @@
 # test_vres_restart.sh, so that water crosses the interface (a few hundred steps, seconds).
 source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
-sed 's/<gravity x="0"/<gravity x="3"/' "$CASES/hydrostatic_vres2d/hydrostatic_vres2d_Def.xml" >"$T/tilt.xml"
-grep -q '<gravity x="3"' "$T/tilt.xml" || notok "the sideways gravity is in the case"
-"$BIN/vres-gencase" -q "$T/tilt.xml" -o "$T/tilt.h5" || notok "gencase the tilted tank"
-"$BIN/vres-partition" -q "$T/tilt.h5" -o "$T/parts.h5" || notok "partition the tilted tank"
+tilted_tank
 "$BIN/vres-partition" -q --single "$T/tilt.h5" -o "$T/single.h5" || notok "partition --single the tilted tank"
 
 expect 0 "coupled run to 0.03 s" "$RUN" --device cpu --tmax 0.03 --tout 0.03 "$T/parts.h5" -o "$T/run"
