@@ -19,6 +19,17 @@
 #define VRES_HD
 #endif
 
+/* Forces a function to be inlined into its callers, so that constant arguments fold away
+ * (compilers otherwise may keep one out-of-line copy with run-time tests); nvcc inlines device
+ * functions on its own. */
+#if defined(__CUDACC__)
+#define VRES_FORCE_INLINE
+#elif defined(__GNUC__)
+#define VRES_FORCE_INLINE __attribute__((always_inline))
+#else
+#define VRES_FORCE_INLINE
+#endif
+
 /* Strip the parentheses of a parameter or argument list. */
 #define VRES_UNPAREN(...) __VA_ARGS__
 

@@ -55,6 +55,20 @@
  * buffer particle is deleted, an interface point accumulates no mass) and its fields are NaN.
  * Otherwise kappa > 100 (or a zero pivot) gives Shepard's value, else the corrected one.
  *
+ * Second order (opts.order = 2; vres-run's VRES_ORDER=2, DualSPHysics' VResOrder 2). The
+ * basis gains the quadratic monomials d_i d_j / h^2 (i <= j over the axes in use) and the test
+ * functions the Hessian h^2 grad_a grad_a W_b = h^2 (F delta_ij + (dF/dr) d_i d_j / r), so the
+ * system has 6 (2D) / 10 (3D) unknowns and the value is exact for every quadratic field. The
+ * first dim + 1 rows and columns are the first-order system, so one pass gives both; where
+ * kappa2 (the same scaled measure of the larger system) exceeds cond2_max (VRES_LIU_COND2_MAX =
+ * 1000) the first-order value is taken, as above, not Shepard's. Measured kappa2 (test_interp.c,
+ * pipelines/reports/interp_compare.txt): 2.7..3.0 in the bulk (4..8 jittered, masses +-50%),
+ * 134..180 on the top row of a flat surface, 500..870 half a spacing above it (up to 2200
+ * jittered: 7 of 20 points fall back), singular one spacing above (two rows in the support) and
+ * at a tank's corner on both wall faces 2150 (falls back). What it removes is the kernel's own
+ * smoothing of curvature, 0.84 f'' h^2 (2D) / 1.07 (3D) at every bulk point under first order:
+ * the bias of a buffer's velocity in a sheared flow (cases/channel_mdbc_vres2d).
+ *
  * The mass-flux gate's quantities come from the same pass: the kernel-support divergence
  *   D = sum_b V_b d_b . grad_a W_b = -sum_b V_b F(r_b) r_b^2   (the SPH divergence of x, = dim
  *       in a full support, ~dim/2 at a flat free surface)
@@ -81,10 +95,13 @@
 #define VRES_LIU_SHEPARD_MIN 0.05 /* Shepard sum at or below which the support is too small (DualSPHysics' cut-off) */
 #define VRES_LIU_DIV_GATE_2D 1.5  /* D above which an interface point's support counts as full, 2D */
 #define VRES_LIU_DIV_GATE_3D 2.75 /* the same in 3D */
+#define VRES_LIU_NMAX 10          /* largest system: 1 + 3 + 6 unknowns, second order in 3D */
+#define VRES_LIU_COND2_MAX 1000.0 /* largest kappa2 for the second-order correction (measured bulk and
+                                     surface values in the header) */
 
 /* How a point's values were obtained (vres_liu_result.method). */
 #define VRES_LIU_NOSUPPORT 0 /* Shepard sum <= shepard_min: fields NaN; delete the buffer particle, no flux */
-#define VRES_LIU_CORRECTED 1 /* first-order corrected kernel (Liu) */
+#define VRES_LIU_CORRECTED 1 /* corrected kernel (Liu), of the order vres_liu_result.order says */
 #define VRES_LIU_SHEPARD 2   /* Shepard fallback: kappa > cond_max, singular matrix, or cond_max <= 0 */
 
 /* The settings of one donor domain. */
@@ -93,6 +110,8 @@ typedef struct vres_liu_opts {
     double rho0;         /* reference density (kg/m^3): wall volumes are m_b / rho0 in D */
     double cond_max;     /* largest kappa for the correction; <= 0: Shepard only (VRES_LIU_COND_MAX) */
     double shepard_min;  /* Shepard sum at or below which there is too little support (VRES_LIU_SHEPARD_MIN) */
+    int order;           /* 1: first-order correction; 2: second order, falling back to first (default 1) */
+    double cond2_max;    /* largest kappa2 for the second-order correction (VRES_LIU_COND2_MAX) */
 } vres_liu_opts;
 
 /* What one point gets. */
@@ -104,14 +123,18 @@ typedef struct vres_liu_result {
                         computed (NOSUPPORT) */
     double div;      /* D = -sum_b V_b F r^2 over donor fluid and walls (dimensionless) */
     double dmin;     /* distance to the nearest donor fluid particle within 2h (m); INFINITY when none */
+    double cond2;    /* kappa2 of the second-order system (dimensionless); NaN when order 1 was asked */
     int method;      /* VRES_LIU_CORRECTED, VRES_LIU_SHEPARD or VRES_LIU_NOSUPPORT */
+    int order;       /* order of the correction used: 2 or 1 with CORRECTED, 0 otherwise */
     int nfluid;      /* donor fluid particles inside the support */
 } vres_liu_result;
 
 /* The sums of one point over its donors. Matrix indices 0..dim are [1, x, (y,) z]. */
 typedef struct vres_liu_acc {
-    double a[4][4];  /* Ah = sum V [W; h grad_a W][1, d/h] (dimensionless); a[0][0] is the Shepard sum */
-    double r[4][4];  /* r[q][i]: field q (rho, vx, vy, vz) times test row i, summed (the field's unit) */
+    double a[VRES_LIU_NMAX][VRES_LIU_NMAX]; /* Ah = sum V [W; h grad_a W; h^2 grad grad W][1, d/h, (d/h)(d/h)]
+                                               (dimensionless); a[0][0] is the Shepard sum */
+    double r[4][VRES_LIU_NMAX]; /* r[q][i]: field q (rho, vx, vy, vz) times test row i, summed (the field's unit) */
+    int n;           /* unknowns accumulated: dim + 1 (order 1) or 1 + dim + dim (dim + 1) / 2 (order 2) */
     double div;      /* D so far (dimensionless) */
     double d2min;    /* squared distance to the nearest donor fluid so far (m^2) */
     int nfluid;      /* donor fluid particles added */
@@ -125,17 +148,96 @@ VRES_HD static inline vres_liu_opts vres_liu_defaults(vres_wendland k, double rh
     o.rho0 = rho0;
     o.cond_max = VRES_LIU_COND_MAX;
     o.shepard_min = VRES_LIU_SHEPARD_MIN;
+    o.order = 1;
+    o.cond2_max = VRES_LIU_COND2_MAX;
     return o;
 }
 
-/* Empty sums. */
-VRES_HD static inline void vres_liu_acc_zero(vres_liu_acc *s)
+/* The unknowns of a correction of order 1 or 2 in dimension dim. */
+VRES_HD static inline int vres_liu_size(int dim, int order)
 {
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) s->a[i][j] = s->r[i][j] = 0;
+    return order == 2 ? 1 + dim + dim * (dim + 1) / 2 : dim + 1;
+}
+
+/* Empty sums for n unknowns (vres_liu_size). */
+VRES_HD static inline void vres_liu_acc_zero(vres_liu_acc *s, int n)
+{
+    for (int i = 0; i < VRES_LIU_NMAX; i++) {
+        for (int j = 0; j < VRES_LIU_NMAX; j++) s->a[i][j] = 0;
+        for (int q = 0; q < 4; q++) s->r[q][i] = 0;
+    }
+    s->n = n;
     s->div = 0;
     s->d2min = INFINITY;
     s->nfluid = 0;
+}
+
+/* vres_liu_gather's body for N unknowns in dimension DIM, both compile-time constants where
+ * vres_liu_gather calls it (so the loops over the matrix unroll), the sums kept in locals (not
+ * behind s, which the compiler would have to assume aliases the donors' positions). */
+VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
+                                             const double *pos, const float *vel, const float *rho,
+                                             const double *mass, const uint8_t *type, const double x[3], const int N,
+                                             const int DIM)
+{
+    vres_cell_range nb[27];
+    const int m = vres_cells_neighbours(g, x, nb), nl = DIM + 1;
+    const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h;
+    /* the axes in use (2D: x, z) and, for order 2, the index pairs of the quadratic monomials */
+    const int ax[3] = {0, DIM == 2 ? 2 : 1, 2};
+    int qi[6], qj[6];
+    for (int p = 0, c = 0; p < DIM; p++)
+        for (int q = p; q < DIM; q++, c++) qi[c] = ax[p], qj[c] = ax[q];
+    double A[VRES_LIU_NMAX][VRES_LIU_NMAX], R[4][VRES_LIU_NMAX], div = s->div, d2min = s->d2min;
+    int nfluid = s->nfluid;
+    for (int i = 0; i < N; i++) {
+        for (int j = 0; j < N; j++) A[i][j] = s->a[i][j];
+        for (int q = 0; q < 4; q++) R[q][i] = s->r[q][i];
+    }
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
+            if (!fluid && !wall) continue;
+            double d[3];
+            for (int k = 0; k < 3; k++) d[k] = pos[3 * b + k] + nb[c].shift[k] - x[k];
+            if (DIM == 2) d[1] = 0;
+            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (r2 >= fourh2) continue;
+            const double r = sqrt(r2), negf = -vres_wendland_f(o.k, r); /* -F >= 0 */
+            if (wall) {
+                div += mass[b] / o.rho0 * negf * r2;
+                continue;
+            }
+            const double vb = mass[b] / rho[b];
+            div += vb * negf * r2;
+            d2min = r2 < d2min ? r2 : d2min;
+            nfluid++;
+            /* column e = [1, d/h (, d_i d_j / h^2)]; test row tr = V [W, h grad_a W (, h^2 grad_a grad_a W)]
+               = V [W, -F h^2 (d/h) (, h^2 F delta_ij + h^2 (dF/dr) d_i d_j / r)] */
+            double e[VRES_LIU_NMAX], tr[VRES_LIU_NMAX];
+            const double vg = vb * negf * h2;
+            e[0] = 1.0;
+            tr[0] = vb * vres_wendland_w(o.k, r);
+            for (int i = 1; i < nl; i++) e[i] = d[ax[i - 1]] * inv_h, tr[i] = vg * e[i];
+            if (N > nl) {
+                const double hf = -vg, hg = r > 0 ? vb * h2 * vres_wendland_dfdr(o.k, r) / r : 0.0;
+                for (int c2 = 0; nl + c2 < N; c2++) {
+                    const double dd = d[qi[c2]] * d[qj[c2]];
+                    e[nl + c2] = dd * inv_h * inv_h;
+                    tr[nl + c2] = (qi[c2] == qj[c2] ? hf : 0.0) + hg * dd;
+                }
+            }
+            const double f[4] = {rho[b], vel[3 * b], vel[3 * b + 1], vel[3 * b + 2]};
+            for (int i = 0; i < N; i++) {
+                for (int j = 0; j < N; j++) A[i][j] += tr[i] * e[j];
+                for (int q = 0; q < 4; q++) R[q][i] += f[q] * tr[i];
+            }
+        }
+    for (int i = 0; i < N; i++) {
+        for (int j = 0; j < N; j++) s->a[i][j] = A[i][j];
+        for (int q = 0; q < 4; q++) s->r[q][i] = R[q][i];
+    }
+    s->div = div, s->d2min = d2min, s->nfluid = nfluid;
 }
 
 /* Accumulate into s the donors of x (m) in the cells g (slot order): positions (m), velocities
@@ -145,45 +247,20 @@ VRES_HD static inline void vres_liu_gather(vres_liu_acc *s, const vres_cells *g,
                                            const float *vel, const float *rho, const double *mass,
                                            const uint8_t *type, const double x[3])
 {
-    vres_cell_range nb[27];
-    const int m = vres_cells_neighbours(g, x, nb), dim = g->dim, n = dim + 1;
-    const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h;
-    for (int c = 0; c < m; c++)
-        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
-            const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
-            if (!fluid && !wall) continue;
-            double d[3];
-            for (int ax = 0; ax < 3; ax++) d[ax] = pos[3 * b + ax] + nb[c].shift[ax] - x[ax];
-            if (dim == 2) d[1] = 0;
-            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            if (r2 >= fourh2) continue;
-            const double r = sqrt(r2), negf = -vres_wendland_f(o.k, r); /* -F >= 0 */
-            if (wall) {
-                s->div += mass[b] / o.rho0 * negf * r2;
-                continue;
-            }
-            const double vb = mass[b] / rho[b];
-            s->div += vb * negf * r2;
-            s->d2min = r2 < s->d2min ? r2 : s->d2min;
-            s->nfluid++;
-            /* column e = [1, d/h]; test row tr = V [W, h grad_a W] = V [W, -F h^2 (d/h)] */
-            const double e[4] = {1.0, d[0] * inv_h, (dim == 2 ? d[2] : d[1]) * inv_h, d[2] * inv_h};
-            const double vg = vb * negf * h2;
-            double tr[4];
-            tr[0] = vb * vres_wendland_w(o.k, r);
-            for (int i = 1; i < n; i++) tr[i] = vg * e[i];
-            const double f[4] = {rho[b], vel[3 * b], vel[3 * b + 1], vel[3 * b + 2]};
-            for (int i = 0; i < n; i++) {
-                for (int j = 0; j < n; j++) s->a[i][j] += tr[i] * e[j];
-                for (int q = 0; q < 4; q++) s->r[q][i] += f[q] * tr[i];
-            }
-        }
+    if (g->dim == 2) {
+        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 6, 2);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 3, 2);
+    } else {
+        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 10, 3);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 4, 3);
+    }
 }
 
-/* Invert the n x n matrix a (n <= 4; a is destroyed) into inv by Gauss-Jordan elimination with
+/* Invert the n x n matrix a (n <= VRES_LIU_NMAX; a is destroyed) into inv by Gauss-Jordan elimination with
  * partial pivoting, the largest |entry| of each column at or below the diagonal taken afresh.
  * Returns 0, or -1 when a pivot is zero or not finite (singular: inv is then unspecified). */
-VRES_HD static inline int vres_liu_invert(int n, double a[4][4], double inv[4][4])
+VRES_HD static inline int vres_liu_invert(int n, double a[VRES_LIU_NMAX][VRES_LIU_NMAX],
+                                          double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++) inv[i][j] = i == j;
@@ -212,7 +289,7 @@ VRES_HD static inline int vres_liu_invert(int n, double a[4][4], double inv[4][4
 }
 
 /* The infinity norm (largest row sum of |entries|) of the n x n matrix a. */
-VRES_HD static inline double vres_liu_norm_inf(int n, const double a[4][4])
+VRES_HD static inline double vres_liu_norm_inf(int n, const double a[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
     double best = 0;
     for (int i = 0; i < n; i++) {
@@ -223,36 +300,63 @@ VRES_HD static inline double vres_liu_norm_inf(int n, const double a[4][4])
     return best;
 }
 
+/* kappa = ||a||_inf ||a^-1||_inf of the leading n x n block of the sums' matrix, its inverse into
+ * inv; INFINITY when singular. */
+VRES_HD static inline double vres_liu_block_cond(const vres_liu_acc *s, int n, double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
+{
+    double a[VRES_LIU_NMAX][VRES_LIU_NMAX];
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) a[i][j] = s->a[i][j];
+    const double na = vres_liu_norm_inf(n, a);
+    return vres_liu_invert(n, a, inv) == 0 ? na * vres_liu_norm_inf(n, inv) : INFINITY;
+}
+
+/* f[q] = the first row of inv (n x n) against the right sides of field q. */
+VRES_HD static inline void vres_liu_first_row(const vres_liu_acc *s, int n,
+                                              const double inv[VRES_LIU_NMAX][VRES_LIU_NMAX], double f[4])
+{
+    for (int q = 0; q < 4; q++) {
+        double v = 0;
+        for (int j = 0; j < n; j++) v += inv[0][j] * s->r[q][j];
+        f[q] = v;
+    }
+}
+
 /* The result for the sums s of dimension dim under the settings o: the too-little-support
- * flag, the condition number, the corrected value or Shepard's, D and the nearest distance. */
+ * flag, the condition numbers, the corrected value (second order where asked and kappa2 <=
+ * cond2_max, else first order where kappa <= cond_max) or Shepard's, D and the nearest distance. */
 VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int dim, vres_liu_opts o)
 {
     vres_liu_result res;
-    const int n = dim + 1;
+    const int n1 = dim + 1;
     const double shep = s->a[0][0];
     res.shepard = shep;
     res.div = s->div;
     res.dmin = sqrt(s->d2min);
     res.nfluid = s->nfluid;
-    res.cond = NAN;
+    res.cond = res.cond2 = NAN;
+    res.order = 0;
     if (!(shep > o.shepard_min)) { /* NaN too */
         res.method = VRES_LIU_NOSUPPORT;
         res.rho = res.v[0] = res.v[1] = res.v[2] = NAN;
         return res;
     }
-    double a[4][4], inv[4][4];
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) a[i][j] = s->a[i][j];
-    const double na = vres_liu_norm_inf(n, a);
-    res.cond = vres_liu_invert(n, a, inv) == 0 ? na * vres_liu_norm_inf(n, inv) : INFINITY;
-    double f[4];
-    if (o.cond_max > 0 && res.cond <= o.cond_max) {
-        res.method = VRES_LIU_CORRECTED;
-        for (int q = 0; q < 4; q++) { /* first row of Ah^-1 against the scaled right side */
-            double v = 0;
-            for (int j = 0; j < n; j++) v += inv[0][j] * s->r[q][j];
-            f[q] = v;
+    double inv[VRES_LIU_NMAX][VRES_LIU_NMAX], f[4];
+    res.cond = vres_liu_block_cond(s, n1, inv);
+    if (o.order == 2 && s->n > n1) {
+        double inv2[VRES_LIU_NMAX][VRES_LIU_NMAX];
+        res.cond2 = vres_liu_block_cond(s, s->n, inv2);
+        if (o.cond_max > 0 && res.cond2 <= o.cond2_max) {
+            res.method = VRES_LIU_CORRECTED, res.order = 2;
+            vres_liu_first_row(s, s->n, inv2, f);
+            res.rho = f[0];
+            res.v[0] = f[1], res.v[1] = f[2], res.v[2] = f[3];
+            return res;
         }
+    }
+    if (o.cond_max > 0 && res.cond <= o.cond_max) {
+        res.method = VRES_LIU_CORRECTED, res.order = 1;
+        vres_liu_first_row(s, n1, inv, f);
     } else {
         res.method = VRES_LIU_SHEPARD;
         for (int q = 0; q < 4; q++) f[q] = s->r[q][0] / shep;
@@ -270,7 +374,7 @@ VRES_HD static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_
                                                   const uint8_t *type, const double x[3])
 {
     vres_liu_acc s;
-    vres_liu_acc_zero(&s);
+    vres_liu_acc_zero(&s, vres_liu_size(g->dim, o.order));
     vres_liu_gather(&s, g, o, pos, vel, rho, mass, type, x);
     return vres_liu_solve(&s, g->dim, o);
 }

@@ -32,14 +32,8 @@
 #include "wendland.h"
 
 /* Forces inlining of the generic interaction into each variant, so that its constant options
- * fold away (compilers otherwise keep one out-of-line copy with run-time tests). */
-#if defined(__CUDACC__)
-#define VRES_SPH_INLINE /* nvcc inlines device functions on its own */
-#elif defined(__GNUC__)
-#define VRES_SPH_INLINE __attribute__((always_inline))
-#else
-#define VRES_SPH_INLINE
-#endif
+ * fold away (device.h). */
+#define VRES_SPH_INLINE VRES_FORCE_INLINE
 
 /* Density diffusion variants (parameter DensityDT). */
 #define VRES_DDT_NONE 0      /* no density diffusion */

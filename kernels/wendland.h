@@ -71,4 +71,13 @@ VRES_HD static inline double vres_wendland_f(vres_wendland k, double r)
     return k.fgrad * t * t * t;
 }
 
+/* dF/dr (m^-(dim+3)) at distance r >= 0 (m): 3 |fgrad| (1 - q/2)^2 / (2h) >= 0; 0 for r >= 2h.
+ * The Hessian of W is then d^2 W / dx_ai dx_aj = F delta_ij + (dF/dr) (x_a - x_b)_i (x_a - x_b)_j / r
+ * (used by the second-order corrected kernel, interp_liu.h). */
+VRES_HD static inline double vres_wendland_dfdr(vres_wendland k, double r)
+{
+    double t = vres_wendland_t(k, r);
+    return -1.5 * k.fgrad * t * t * k.inv_h;
+}
+
 #endif

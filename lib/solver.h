@@ -23,6 +23,8 @@ typedef struct vres_run_opts {
     const char *cmdline; /* full command line, prepended to each snapshot's history */
     int restart;         /* 1: the store is a snapshot of vres-run's to continue (--restart) */
     double checkpoint;   /* wall-clock seconds between checkpoint.h5 writes; <= 0: only at the end and on a signal */
+    const char *vres_order; /* --vres-order: "1", "2" or "auto" (buffer interpolation); NULL: the restarted
+                               run's, else auto */
 } vres_run_opts;
 
 /* Check that the store is one this solver runs (refusing anything it would have to ignore)

@@ -23,9 +23,10 @@ typedef struct vres_couple_ledger {
 /* The header line of ledger.tsv (names and units of its columns). */
 extern const char vres_couple_ledger_header[];
 
-/* The coupling of store s's domains (its regions, interfaces and, on a restart, the ledger
- * and the start's total mass), or NULL for a store with one domain. */
-vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted);
+/* The coupling of store s's domains (its regions, interfaces and, on a restart, the ledger,
+ * the start's total mass and the interpolation order), or NULL for a store with one domain.
+ * order: "1", "2", "auto" (vres-run's --vres-order) or NULL (the restarted run's, else auto). */
+vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order);
 /* Free it (NULL is fine). */
 void vres_couple_close(vres_couple *C);
 /* Wall-clock seconds the coupling has taken so far (its interpolations, fluxes, type changes,

@@ -12,9 +12,10 @@
 #include "store.h"
 
 static const char synopsis[] =
-    "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S] STORE -o RUNDIR\n"
-    "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S] --restart SNAP\n"
-    "         [-o RUNDIR]\n";
+    "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
+    "         [--vres-order 1|2|auto] STORE -o RUNDIR\n"
+    "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
+    "         [--vres-order 1|2|auto] --restart SNAP [-o RUNDIR]\n";
 
 static const vres_opt options[] = {
     {"tmax", 0, VRES_ARG_POSDOUBLE, 0},       /* end time (s) instead of the store's TimeMax */
@@ -23,11 +24,12 @@ static const vres_opt options[] = {
     {"threads", 0, VRES_ARG_INT, 0},          /* OpenMP threads */
     {"checkpoint", 0, VRES_ARG_DOUBLE, 0},    /* wall seconds between checkpoint.h5 writes (0: end and signals only) */
     {"restart", 0, VRES_ARG_STR, 0},          /* snapshot or checkpoint of a run to continue */
+    {"vres-order", 0, VRES_ARG_STR, 0},       /* order of the coupling's buffer interpolation: 1, 2 or auto */
     {NULL, 0, VRES_ARG_NONE, 0},
 };
 
 /* Check the options the parser cannot (STORE or --restart, -o, device name, thread count,
- * checkpoint interval); exit 2 on a usage error, like the parser. */
+ * checkpoint interval, interpolation order); exit 2 on a usage error, like the parser. */
 static void check_usage(const vres_cli *cli)
 {
     int bad = 0;
@@ -43,6 +45,9 @@ static void check_usage(const vres_cli *cli)
     if (th && atoi(th) < 1) vres_error("--threads %s: must be at least 1", th), bad = 1;
     if (vres_cli_get(cli, "checkpoint") && vres_cli_double(cli, "checkpoint", 0) < 0)
         vres_error("--checkpoint %s: must be at least 0 (seconds)", vres_cli_get(cli, "checkpoint")), bad = 1;
+    const char *ord = vres_cli_get(cli, "vres-order");
+    if (ord && strcmp(ord, "1") && strcmp(ord, "2") && strcmp(ord, "auto"))
+        vres_error("--vres-order %s: must be 1, 2 or auto", ord), bad = 1;
     if (bad) {
         vres_error("Try '%s --help'.", cli->tool);
         exit(2);
@@ -61,7 +66,8 @@ int main(int argc, char **argv)
                        vres_cli_get(&cli, "device"),
                        vres_cli_get(&cli, "threads") ? atoi(vres_cli_get(&cli, "threads")) : 0,
                        cli.output ? cli.output : dirname(snapdir), /* a restart continues in the snapshot's directory */
-                       cli.cmdline, restart != NULL, vres_cli_double(&cli, "checkpoint", 300)};
+                       cli.cmdline, restart != NULL, vres_cli_double(&cli, "checkpoint", 300),
+                       vres_cli_get(&cli, "vres-order")};
     vres_store *s = vres_store_read(restart ? restart : cli.pos[0]);
     int rc = s ? vres_solver_run(s, &o) : VRES_RUN_FAIL;
     vres_store_free(s);

@@ -300,6 +300,76 @@ END_TEST
 START_TEST(test_exact_varmass_3d) { check_exact(3, 0.25, 1, 6); }
 END_TEST
 
+/* ---- second order ---- */
+
+#define QUAD_TOL 1e-3 /* quadratic exactness, in Q h^2: the donors store the quadratic field (values up to
+                         ~200 Q h^2 near the points) in float, 1.2e-5 each, summed with weights whose
+                         |sum| is a few: ~1e-4; the first-order error it removes is 0.84 */
+#define QUAD_LIN_TOL 1e-11 /* linear fields under the second order: EXACT_TOL's derivation with kappa2
+                              up to cond2_max = 1000 instead of 100 */
+
+/* The second-order correction on a quadratic field (vx; rho, vy, vz linear) over a 24^dim lattice
+ * with a flat free surface at z = 0.5 m, jittered by jitter dp, masses varying when varmass: at 40
+ * interior points it must be used (order 2) and exact to QUAD_TOL where the first order errs by
+ * more than 0.5 Q h^2, and exact on the linear fields to QUAD_LIN_TOL; on the top row and dp/2
+ * above, where kappa2 may pass cond2_max, each point's value must be the second-order one when
+ * order is 2 and the first-order one, bit for bit, when it fell back. Prints kappa2's ranges. */
+static void check_quadratic(int dim, double jitter, int varmass, uint64_t seed)
+{
+    set S = set_new(dim, FIELD_QUADRATIC);
+    const int n[3] = {24, 24, 24};
+    set_lattice(&S, n, 0.5, jitter, seed, varmass);
+    set_finish(&S);
+    vres_liu_opts o2 = S.o, o1 = S.o;
+    o2.order = 2;
+    const double depths[3] = {-1, 0, -0.5};
+    double kmin[3], kmax[3], e1min = INFINITY, e2max = 0, elin = 0;
+    int used2[3] = {0, 0, 0};
+    for (int c = 0; c < 3; c++) {
+        kmin[c] = INFINITY, kmax[c] = 0;
+        for (int i = 0; i < (c == 0 ? 40 : 20); i++) {
+            double x[3];
+            point_at(dim, &seed, 0.5, c == 0 ? urand(&seed, 6, 17) : depths[c], x);
+            vres_liu_result r2 = liu_o(&S, o2, x), r1 = liu_o(&S, o1, x);
+            ck_assert(r1.order == 1 && isnan(r1.cond2) && r2.cond == r1.cond);
+            kmin[c] = fmin(kmin[c], r2.cond2), kmax[c] = fmax(kmax[c], r2.cond2);
+            ck_assert_msg((r2.order == 2) == (r2.cond2 <= o2.cond2_max), "%dD kappa2 %g order %d", dim, r2.cond2,
+                          r2.order);
+            if (r2.order == 1) {
+                ck_assert(r2.rho == r1.rho && r2.v[0] == r1.v[0] && r2.v[1] == r1.v[1] && r2.v[2] == r1.v[2]);
+                continue;
+            }
+            used2[c]++;
+            const double e2 = fabs(r2.v[0] - quad(x, S.d->h)), e1 = fabs(r1.v[0] - quad(x, S.d->h));
+            const double el = fmax(fabs(r2.rho - lin(0, x)) / SCALE[0],
+                                   fmax(fabs(r2.v[1] - lin(2, x)), fabs(r2.v[2] - lin(3, x))));
+            ck_assert_msg(e2 < QUAD_TOL, "%dD depth %g dp: quadratic error %.3e Q h^2 (kappa2 %g)", dim, depths[c], e2,
+                          r2.cond2);
+            ck_assert_msg(el < QUAD_LIN_TOL, "%dD depth %g dp: linear error %.3e (kappa2 %g)", dim, depths[c], el,
+                          r2.cond2);
+            e2max = fmax(e2max, e2), elin = fmax(elin, el);
+            if (c == 0) e1min = fmin(e1min, e1);
+        }
+    }
+    ck_assert_msg(used2[0] == 40, "%dD: second order used at %d of 40 interior points", dim, used2[0]);
+    ck_assert_msg(e1min > 0.5, "%dD: first-order interior error only %g Q h^2", dim, e1min);
+    printf("quadratic %dD jitter %.2f dp%s: second order at %d/40 interior, %d/20 top row, %d/20 dp/2 above; "
+           "max error %.1e Q h^2 (first order >= %.2f in the interior), linear %.1e; kappa2 interior %.3g..%.3g, "
+           "top row %.3g..%.3g, dp/2 above %.3g..%.3g\n",
+           dim, jitter, varmass ? ", variable masses" : "", used2[0], used2[1], used2[2], e2max, e1min, elin, kmin[0],
+           kmax[0], kmin[1], kmax[1], kmin[2], kmax[2]);
+    set_free(&S);
+}
+
+START_TEST(test_quadratic_regular_2d) { check_quadratic(2, 0.0, 0, 11); }
+END_TEST
+START_TEST(test_quadratic_regular_3d) { check_quadratic(3, 0.0, 0, 12); }
+END_TEST
+START_TEST(test_quadratic_varmass_2d) { check_quadratic(2, 0.25, 1, 13); }
+END_TEST
+START_TEST(test_quadratic_varmass_3d) { check_quadratic(3, 0.25, 1, 14); }
+END_TEST
+
 /* ---- Shepard fallback and too little support ---- */
 
 /* A fluid row (2D), layer or line (3D) of particles: the support has no extent across it, so
@@ -644,21 +714,27 @@ START_TEST(test_invert)
 {
     double full[4][4] = {{4, 1, -2, 0.5}, {1, 3, 0.25, 0}, {-2, 0.25, 5, 1}, {0.5, 7, 1, 2}};
     double tricky[4][4] = {{2, 0, 0, 0}, {1, 1e-18, 1, 0}, {1, 1, 0, 0}, {0, 0, 0, 0}};
-    const double (*cases[2])[4] = {full, tricky};
-    const int sizes[2] = {4, 3};
-    for (int c = 0; c < 2; c++) {
+    static double big[VRES_LIU_NMAX][VRES_LIU_NMAX]; /* the second-order 3D size: diagonally heavy, random */
+    uint64_t seed = 9;
+    for (int i = 0; i < VRES_LIU_NMAX; i++)
+        for (int j = 0; j < VRES_LIU_NMAX; j++) big[i][j] = urand(&seed, -1, 1) + (i == j ? 4.0 : 0.0);
+    const int sizes[3] = {4, 3, VRES_LIU_NMAX};
+    for (int c = 0; c < 3; c++) {
         int n = sizes[c];
-        double a[4][4], inv[4][4];
-        memcpy(a, cases[c], sizeof a);
+        double a0[VRES_LIU_NMAX][VRES_LIU_NMAX] = {{0}}, a[VRES_LIU_NMAX][VRES_LIU_NMAX], inv[VRES_LIU_NMAX][VRES_LIU_NMAX];
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) a0[i][j] = c == 0 ? full[i][j] : c == 1 ? tricky[i][j] : big[i][j];
+        memcpy(a, a0, sizeof a);
         ck_assert_int_eq(vres_liu_invert(n, a, inv), 0);
         for (int i = 0; i < n; i++)
             for (int j = 0; j < n; j++) {
                 double s = 0;
-                for (int k = 0; k < n; k++) s += cases[c][i][k] * inv[k][j];
+                for (int k = 0; k < n; k++) s += a0[i][k] * inv[k][j];
                 ck_assert_msg(fabs(s - (i == j)) < 1e-14, "case %d: (A inv)[%d][%d] = %g", c, i, j, s);
             }
     }
-    double sing[4][4] = {{1, 2, 0, 0}, {2, 4, 0, 0}}, zero[4][4] = {{0}}, inv[4][4];
+    double sing[VRES_LIU_NMAX][VRES_LIU_NMAX] = {{1, 2}, {2, 4}}, zero[VRES_LIU_NMAX][VRES_LIU_NMAX] = {{0}},
+           inv[VRES_LIU_NMAX][VRES_LIU_NMAX];
     ck_assert_int_eq(vres_liu_invert(2, sing, inv), -1);
     ck_assert_int_eq(vres_liu_invert(3, zero, inv), -1);
 }
@@ -715,10 +791,11 @@ static void cmp_point(int dim, const cmp_case *c, uint64_t *seed, double x[3])
 /* DualSPHysics 5.4's scaled condition number h^2 ||A||_inf ||A^-1||_inf of the unscaled matrix
  * A = S^-1 Ah S (S = diag(1, h..)) for the scaled matrix ah of dimension dim at smoothing
  * length h (m); INFINITY when singular. */
-static double kappa_ref(const double ah[4][4], int dim, double h)
+static double kappa_ref(const double ah[VRES_LIU_NMAX][VRES_LIU_NMAX], int dim, double h)
 {
     int n = dim + 1;
-    double a[4][4], inv[4][4], A[4][4], Ai[4][4];
+    double a[VRES_LIU_NMAX][VRES_LIU_NMAX], inv[VRES_LIU_NMAX][VRES_LIU_NMAX], A[VRES_LIU_NMAX][VRES_LIU_NMAX],
+        Ai[VRES_LIU_NMAX][VRES_LIU_NMAX];
     memcpy(a, ah, sizeof a);
     if (vres_liu_invert(n, a, inv) != 0) return INFINITY;
     for (int i = 0; i < n; i++)
@@ -754,12 +831,12 @@ static void cmp_add(cmp_stat *st, const set *S, const double x[3], double rho, d
 
 /* One table row per method for case c in dimension dim; kref gets the largest reference
  * measure kappa_ref over the points at the case's own h. */
-static void cmp_case_run(int dim, const cmp_case *c, cmp_stat st[3], double *kref)
+static void cmp_case_run(int dim, const cmp_case *c, cmp_stat st[4], double *kref)
 {
     uint64_t seed = 101;
     set S = cmp_set(dim, c, 77);
     const vres_domain *d = S.d;
-    for (int m = 0; m < 3; m++) st[m] = (cmp_stat){0, 0, 0, 0, INFINITY, 0};
+    for (int m = 0; m < 4; m++) st[m] = (cmp_stat){0, 0, 0, 0, INFINITY, 0};
     *kref = 0;
     for (int i = 0; i < 20; i++) {
         double x[3];
@@ -778,11 +855,16 @@ static void cmp_case_run(int dim, const cmp_case *c, cmp_stat st[3], double *kre
         cmp_add(&st[1], &S, x, f[1], f[2], mm == VRES_INTERP_CORRECTED, mm == VRES_INTERP_OUTSIDE ? NAN : cond);
         /* Liu */
         vres_liu_acc s;
-        vres_liu_acc_zero(&s);
+        vres_liu_acc_zero(&s, dim + 1);
         vres_liu_gather(&s, &S.g, S.o, d->pos, d->vel, d->rho, d->mass_p, d->type, x);
         vres_liu_result rl = vres_liu_solve(&s, dim, S.o);
         cmp_add(&st[2], &S, x, rl.rho, rl.v[0], rl.method == VRES_LIU_CORRECTED, rl.cond);
         if (rl.method != VRES_LIU_NOSUPPORT) *kref = fmax(*kref, kappa_ref(s.a, dim, d->h));
+        /* Liu, second order (falling back to first order above cond2_max) */
+        vres_liu_opts o2 = S.o;
+        o2.order = 2;
+        vres_liu_result r2 = liu_o(&S, o2, x);
+        cmp_add(&st[3], &S, x, r2.rho, r2.v[0], r2.order == 2, r2.cond2);
     }
     set_free(&S);
 }
@@ -807,7 +889,7 @@ static const cmp_case CASES[] = {
 static void compare(void)
 {
     compare_mode = 1;
-    const char *mname[3] = {"Shepard", "MLS", "Liu"};
+    const char *mname[4] = {"Shepard", "MLS", "Liu", "Liu2"};
     printf("# MLS (kernels/interp.h, vres-probe) against Liu (kernels/interp_liu.h, the coupling) and Shepard.\n"
            "# Made by: build/tests/test_interp --compare\n"
            "# Donors: lattices of dp = 2^-6 m, h = sqrt(dim) dp, Wendland C2; 20 points per row (x, y random).\n"
@@ -817,15 +899,18 @@ static void compare(void)
            "#   MLS's colour limit set to Liu's 0.05 here; vres-probe uses 0.3).\n"
            "# cond: MLS lambda_max/lambda_min of its moment matrix; Liu kappa = cond_inf of the scaled\n"
            "#   matrix; both fall back to Shepard above 100. kref: DualSPHysics 5.4's h^2 cond_inf(A) at\n"
-           "#   this h, the largest over the row's points (Liu's matrix).\n");
+           "#   this h, the largest over the row's points (Liu's matrix).\n"
+           "# Liu2: the second-order correction (test functions [W, grad W, grad grad W]; VRES_ORDER=2 in\n"
+           "#   vres-run); corr counts the points it was used at (kappa2 <= 1000), the rest fell back to Liu;\n"
+           "#   cond: its kappa2.\n");
     for (int dim = 2; dim <= 3; dim++) {
         printf("\n%dD (h = %.4f m)\n%-40s %-8s %9s %8s %6s %15s %9s\n", dim, sqrt((double)dim) * DP, "case", "method",
                "lin", "quad", "corr", "cond", "kref");
         for (size_t c = 0; c < sizeof CASES / sizeof *CASES; c++) {
-            cmp_stat st[3];
+            cmp_stat st[4];
             double kref;
             cmp_case_run(dim, &CASES[c], st, &kref);
-            for (int m = 0; m < 3; m++) {
+            for (int m = 0; m < 4; m++) {
                 char cond[32] = "-", kr[16] = "";
                 if (m && st[m].valued) snprintf(cond, sizeof cond, "%.3g..%.3g", st[m].cmin, st[m].cmax);
                 if (m == 2) snprintf(kr, sizeof kr, "%.3g", kref);
@@ -849,7 +934,7 @@ static void compare(void)
         for (int k = 0; k < 5; k++) {
             double x[3] = {quant(11.3 * DP), dim == 3 ? quant(11.6 * DP) : 0, quant(0.5 - depths[k] * DP)};
             vres_liu_acc s;
-            vres_liu_acc_zero(&s);
+            vres_liu_acc_zero(&s, dim + 1);
             vres_liu_gather(&s, &S.g, S.o, S.d->pos, S.d->vel, S.d->rho, S.d->mass_p, S.d->type, x);
             vres_liu_result r = vres_liu_solve(&s, dim, S.o);
             char label[64];
@@ -883,6 +968,10 @@ static Suite *interp_suite(void)
     tcase_add_test(t, test_2d_ignores_y);
     tcase_add_test(t, test_loops);
     tcase_add_test(t, test_invert);
+    tcase_add_test(t, test_quadratic_regular_2d);
+    tcase_add_test(t, test_quadratic_regular_3d);
+    tcase_add_test(t, test_quadratic_varmass_2d);
+    tcase_add_test(t, test_quadratic_varmass_3d);
     suite_add_tcase(s, t);
     return s;
 }

@@ -62,7 +62,10 @@ check "ledger: the domains' fluid masses add up to the total, which is run.tsv's
 # ---- mass: the bound is one fine particle's mass (the smallest domain mass, read from the
 # store). At rest no water should cross the interface; a particle that changes sides without
 # its counterpart changing in the other domain is the smallest imbalance the ledger can show,
-# and over 0.4 s none is expected (measured: none until 0.45 s, then one per 0.1 to 0.3 s).
+# and over 0.4 s at most one is expected (measured with the first-order interpolation: none
+# until 0.45 s, then one per 0.1 to 0.3 s; with the default --vres-order auto the first, a
+# buffer particle of D1 drifting into its fluid region, at 0.40 s). The ledger prints masses
+# with 9 significant digits, so the comparison allows their rounding (1e-8 of the mass).
 # DESIGN 5's bound, one particle mass per segment, is 36 kg here (7% of the mass): too loose
 # to catch anything at rest.
 mfine=$(for d in $(h5ls "$T/parts.h5/Domains" | awk '{print $1}'); do attr "/Domains/$d/mass" "$T/parts.h5"; done |
@@ -71,9 +74,9 @@ m0=$(grep -v '^#' "$L" | head -1 | cut -f19)
 m1=$(grep -v '^#' "$L" | tail -1 | cut -f19)
 dr=$(grep -v '^#' "$L" | tail -1 | cut -f20)
 check "total fluid mass kept within one fine particle mass ($(printf %.6g "$mfine") kg): $m0 kg to $m1 kg" \
-    awk -v a="$m0" -v b="$m1" -v m="$mfine" 'BEGIN {exit !(m > 0 && b - a <= m && a - b <= m)}'
+    awk -v a="$m0" -v b="$m1" -v m="$mfine" 'BEGIN {e = m + 1e-8 * a; exit !(m > 0 && b - a <= e && a - b <= e)}'
 check "ledger's drift column ($dr) within the same bound, relative to the start's mass" \
-    awk -v d="$dr" -v a="$m0" -v m="$mfine" 'BEGIN {exit !(d * a <= m && -d * a <= m)}'
+    awk -v d="$dr" -v a="$m0" -v m="$mfine" 'BEGIN {e = m + 1e-8 * a; exit !(d * a <= e && -d * a <= e)}'
 
 # ---- finite, both domains with fluid and buffers
 check "no NaN or inf in run.tsv and ledger.tsv" sh -c "! grep -v '^#' '$T/run/run.tsv' '$L' | grep -q -i 'nan\|inf'"
