@@ -19,9 +19,11 @@
 # summary is written.
 #
 # The default list holds the validations whose physics vres-run has and the stability cases
-# (DESIGN section 7; the stiff_vres_* ones run coupled, through vres-partition). cavity_re1000
-# is the longest entry (30 s of flow at L/dp = 40: 27 min on one core of the loaded 2-core VM;
-# cases/cavity_re1000/README.md).
+# (DESIGN section 7; the stiff_vres_* ones run coupled, through vres-partition), and the 3-D
+# coupled cases end to end: tank_vres3d (still water, 0.3 s: 15 min on one core) and
+# dambreak_vres3d (0.8 s coupled and single resolution: see its README.md for the time).
+# cavity_re1000 is the longest entry (30 s of flow at L/dp = 40: 27 min on one core of the
+# loaded 2-core VM; cases/cavity_re1000/README.md).
 
 BIN     := bin
 RUNS    ?= build/runs
@@ -34,7 +36,7 @@ VALIDATE ?= dambreak_front2d:0.02 dambreak_front2d:0.01 hydrostatic_profile2d:0.
             dambreak_lobovsky2d:0.01 ritter2d:0.05 taylor_green2d:0.02 cavity_re1000:0.025 \
             stiff_rest2d: stiff_impact2d: stiff_lowvisc2d: stiff_tinydp2d: \
             stiff_vres_front2d: stiff_vres_dpratio4_2d: stiff_vres_nested3_2d: stiff_vres_corner2d: \
-            stiff_vres_siblings2d:
+            stiff_vres_siblings2d: tank_vres3d: dambreak_vres3d:
 
 case_of = $(word 1,$(subst :, ,$(1)))
 dp_of   = $(word 2,$(subst :, ,$(1)))
