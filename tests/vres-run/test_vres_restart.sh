@@ -92,3 +92,16 @@ for k in 0 5; do
     check "$f: run_mass0 ($v kg) is the total fluid mass at the start ($m0 kg)" \
         awk -v a="$v" -v b="$m0" 'BEGIN {exit !(a - b <= 1e-8 * b && b - a <= 1e-8 * b)}'
 done
+
+# ---- the interpolation order (--vres-order): kept in the snapshots, and a restart without
+# the option continues with the run's order, bit for bit; the order changes the flow
+expect 0 "coupled run with --vres-order 1 to 0.04 s" "$RUN" -q --vres-order 1 --tmax 0.04 --tout 0.02 "$T/parts.h5" -o "$T/o1"
+v=$(h5dump -a /Parameters/run_vres_order "$T/o1/snap_00001.h5" | sed -n 's/^ *(0): //p')
+check "snap_00001.h5 records run_vres_order 1 ($v)" [ "$v" = 1 ]
+expect 0 "restart from its snap_00001.h5 without --vres-order" "$RUN" -q --restart "$T/o1/snap_00001.h5" -o "$T/o1r"
+same_snaps "$T/o1" "$T/o1r" 2:2
+check "the first-order run differs from the default (auto) run at 0.04 s" \
+    sh -c "! h5diff -q '$T/a/snap_00002.h5' '$T/o1/snap_00002.h5' /Domains/D1/Velocity /Domains/D1/Velocity >/dev/null"
+expect_err 2 "--vres-order 3: must be 1, 2 or auto" "--vres-order 3 refused (exit 2) with its message" \
+    "$RUN" --vres-order 3 "$T/parts.h5" -o "$T/o3"
+check "nothing written for it" [ ! -e "$T/o3" ]
