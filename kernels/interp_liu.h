@@ -55,7 +55,8 @@
  * buffer particle is deleted, an interface point accumulates no mass) and its fields are NaN.
  * Otherwise kappa > 100 (or a zero pivot) gives Shepard's value, else the corrected one.
  *
- * Second order (opts.order = 2; vres-run's VRES_ORDER=2, DualSPHysics' VResOrder 2). The
+ * Second order (opts.order = 2; vres-run's --vres-order 2, or auto from coarser donors;
+ * DualSPHysics' VResOrder 2). The
  * basis gains the quadratic monomials d_i d_j / h^2 (i <= j over the axes in use) and the test
  * functions the Hessian h^2 grad_a grad_a W_b = h^2 (F delta_ij + (dF/dr) d_i d_j / r), so the
  * system has 6 (2D) / 10 (3D) unknowns and the value is exact for every quadratic field. The
@@ -159,11 +160,12 @@ VRES_HD static inline int vres_liu_size(int dim, int order)
     return order == 2 ? 1 + dim + dim * (dim + 1) / 2 : dim + 1;
 }
 
-/* Empty sums for n unknowns (vres_liu_size). */
+/* Empty sums for n unknowns (vres_liu_size): the leading n x n block and n right sides, all
+ * that is read. */
 VRES_HD static inline void vres_liu_acc_zero(vres_liu_acc *s, int n)
 {
-    for (int i = 0; i < VRES_LIU_NMAX; i++) {
-        for (int j = 0; j < VRES_LIU_NMAX; j++) s->a[i][j] = 0;
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < n; j++) s->a[i][j] = 0;
         for (int q = 0; q < 4; q++) s->r[q][i] = 0;
     }
     s->n = n;

@@ -900,8 +900,8 @@ static void compare(void)
            "# cond: MLS lambda_max/lambda_min of its moment matrix; Liu kappa = cond_inf of the scaled\n"
            "#   matrix; both fall back to Shepard above 100. kref: DualSPHysics 5.4's h^2 cond_inf(A) at\n"
            "#   this h, the largest over the row's points (Liu's matrix).\n"
-           "# Liu2: the second-order correction (test functions [W, grad W, grad grad W]; VRES_ORDER=2 in\n"
-           "#   vres-run); corr counts the points it was used at (kappa2 <= 1000), the rest fell back to Liu;\n"
+           "# Liu2: the second-order correction (test functions [W, grad W, grad grad W]; --vres-order 2\n"
+           "#   in vres-run); corr counts the points it was used at (kappa2 <= 1000), the rest fell back to Liu;\n"
            "#   cond: its kappa2.\n");
     for (int dim = 2; dim <= 3; dim++) {
         printf("\n%dD (h = %.4f m)\n%-40s %-8s %9s %8s %6s %15s %9s\n", dim, sqrt((double)dim) * DP, "case", "method",
