@@ -106,6 +106,19 @@ static vres_store *block(int jtype, uint64_t *jid)
     return s;
 }
 
+/* block(jtype, jid) sorted by a cell list *g of cell size 2h (dc's box), its pressures from
+ * c's equation of state. */
+static vres_store *sorted_block(int jtype, uint64_t *jid, const run_cfg *c, const run_dom *dc, vres_cells *g)
+{
+    vres_store *s = block(jtype, jid);
+    vres_domain *d = &s->dom[0];
+    ck_assert_int_eq(vres_cells_init(g, 2, 2 * dc->h, dc->box_lo, dc->box_hi, NULL), 0);
+    vres_cells_build(g, d->pos, d->n);
+    ck_assert_int_eq(vres_cells_reorder(g, d), 0);
+    vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
+    return s;
+}
+
 /* The slot of the particle with id `id` in d. */
 static size_t slot_of(const vres_domain *d, uint64_t id)
 {
@@ -154,14 +167,7 @@ START_TEST(interaction_feels_buffer_as_fluid)
     const run_cfg c = config();
     const run_dom dc = domain(0, 0);
     const vres_sph_consts C = vres_run_consts(&c, &dc);
-    for (int t = 0; t < 3; t++) {
-        s[t] = block(types[t], &jid);
-        vres_domain *d = &s[t]->dom[0];
-        ck_assert_int_eq(vres_cells_init(&g[t], 2, 2 * dc.h, dc.box_lo, dc.box_hi, NULL), 0);
-        vres_cells_build(&g[t], d->pos, d->n);
-        ck_assert_int_eq(vres_cells_reorder(&g[t], d), 0);
-        vres_eos_loop_cpu(d->n, d->rho, d->press, c.rho0, c.B, c.gamma);
-    }
+    for (int t = 0; t < 3; t++) s[t] = sorted_block(types[t], &jid, &c, &dc, &g[t]);
     const vres_domain *d = &s[0]->dom[0];
     size_t n = d->n, j = slot_of(d, jid);
     for (int k = 0; k < 4; k++) {
@@ -203,14 +209,7 @@ START_TEST(buffer_gets_fluid_shifting_sums)
     const run_cfg c = config();
     const run_dom dc = domain(0, 0);
     vres_sph_consts C = vres_run_consts(&c, &dc);
-    for (int t = 0; t < 2; t++) {
-        s[t] = block(types[t], &jid);
-        vres_domain *d = &s[t]->dom[0];
-        ck_assert_int_eq(vres_cells_init(&g[t], 2, 2 * dc.h, dc.box_lo, dc.box_hi, NULL), 0);
-        vres_cells_build(&g[t], d->pos, d->n);
-        ck_assert_int_eq(vres_cells_reorder(&g[t], d), 0);
-        vres_eos_loop_cpu(d->n, d->rho, d->press, c.rho0, c.B, c.gamma);
-    }
+    for (int t = 0; t < 2; t++) s[t] = sorted_block(types[t], &jid, &c, &dc, &g[t]);
     const size_t n = s[0]->dom[0].n, j = slot_of(&s[0]->dom[0], jid);
     for (int mode = 1; mode <= 3; mode += 2) { /* 1: a wall neighbour cancels (NaN), 3: walls count */
         C.shift_mode = mode;
