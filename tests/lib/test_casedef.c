@@ -430,8 +430,10 @@ START_TEST(check_buffers)
 }
 END_TEST
 
-/* --check: walls without normals (a strip painted by a fill, which gives no normals) crossing
- * the buffer band at the top of a box; the same strip away from the box is fine. */
+/* --check: mDBC walls without normals (a strip painted by a fill, which gives no normals)
+ * crossing the buffer band at the top of a box; the same strip away from the box is fine, and
+ * so is the strip with DBC walls, which take no normal. */
+#define SYMPL_MDBC "<parameters>" P("StepAlgorithm", "2") P("Boundary", "2") "</parameters>"
 START_TEST(check_normals)
 {
     const char *strip = "<setmkbound mk=\"0\"/><fillbox x=\"0.5\" y=\"0\" z=\"1.5\"><modefill>void</modefill>"
@@ -442,11 +444,15 @@ START_TEST(check_normals)
                       "<dpratio v=\"2\"/></bufferbox></vres>";
     char cmds[1024];
     snprintf(cmds, sizeof cmds, "%s%s", WATER, strip);
-    vres_store *s = rd(mkcase("", DEF2D, cmds, near, SYMPL));
+    vres_store *s = rd(mkcase("", DEF2D, cmds, near, SYMPL_MDBC));
     ck_assert_ptr_nonnull(s);
     ck_assert_int_eq(vres_case_check(s), 1);
     vres_store_free(s);
-    s = rd(mkcase("", DEF2D, cmds, far, SYMPL));
+    s = rd(mkcase("", DEF2D, cmds, near, SYMPL));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 0);
+    vres_store_free(s);
+    s = rd(mkcase("", DEF2D, cmds, far, SYMPL_MDBC));
     ck_assert_ptr_nonnull(s);
     ck_assert_int_eq(vres_case_check(s), 0);
     vres_store_free(s);
