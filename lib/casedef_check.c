@@ -120,7 +120,7 @@ static int check_box_room(const vres_store *s, size_t k, double h0, const char *
         double lo = b->point[a], hi = b->point[a] + b->size[a], room = hi - lo;
         if (lo > s->domain_min[a] + 1e-6 * dpp) room -= ov + pband;
         if (hi < s->domain_max[a] - 1e-6 * dpp) room -= ov + pband;
-        if (room >= dpp) continue;
+        if (room >= dpp * (1 - 1e-6)) continue;
         vres_error("%s: %s: the box is too small along %c: its parent's buffer bands (%g m each) fill it; make it "
                    "wider than %g m", s->name ? s->name : "case", name, "xyz"[a], pband, 2 * (pband + ov) + dpp);
         return 1;
