@@ -8,9 +8,9 @@
 
 #include "store.h"
 
-/* Run every check on s; fresh is 1 when its particles are still where the case drew them
- * (not a restart), which the checks of fluid widths need. Prints each problem as one line
- * (vres_error) and returns their count. */
+/* Run every check on s; fresh is 1 when its particles are still on the lattice the case was
+ * drawn on (not a restart), which the measures of walls and widths read: without it only the
+ * time step is checked. Prints each problem as one line (vres_error) and returns their count. */
 int vres_preflight(const vres_store *s, int fresh);
 
 /* The mDBC check alone (Boundary=2): every wall mk whose particles with a normal measure,
