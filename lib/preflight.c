@@ -159,6 +159,29 @@ static double wall_thickness(const pf_grid *walls, const vres_domain *d, size_t 
     return *layers * step;
 }
 
+/* 1 when mk is among the n mks of list. */
+static int mk_in(const int32_t *list, size_t n, int32_t mk)
+{
+    for (size_t j = 0; j < n; j++)
+        if (list[j] == mk) return 1;
+    return 0;
+}
+
+/* 1 when a lattice neighbour of wall particle i (the 8 nodes around it in 2D, 26 in 3D) holds
+ * a fluid or buffer particle: a wall the fluid touches. */
+static int touches_fluid(const pf_grid *fluid, const vres_domain *d, size_t i, int dim)
+{
+    const double *x = &d->pos[3 * i];
+    for (int a = -1; a <= 1; a++)
+        for (int b = dim == 2 ? 0 : -1; b <= (dim == 2 ? 0 : 1); b++)
+            for (int c = -1; c <= 1; c++) {
+                if (!a && !b && !c) continue;
+                double p[3] = {x[0] + a * d->dp, x[1] + b * d->dp, x[2] + c * d->dp};
+                if (grid_near(fluid, p)) return 1;
+            }
+    return 0;
+}
+
 int vres_preflight_mdbc_walls(const vres_store *s)
 {
     if (vres_params_get(&s->params, "Boundary", 1) != 2) return 0;
@@ -166,38 +189,51 @@ int vres_preflight_mdbc_walls(const vres_store *s)
     for (size_t k = 0; k < s->ndomains; k++) {
         const vres_domain *d = &s->dom[k];
         if (!d->normal || !(d->dp > 0) || !(d->h > 0)) continue;
-        pf_grid walls;
+        pf_grid walls, fluid;
         grid_build(&walls, d, is_wall);
+        grid_build(&fluid, d, is_fluid);
         pf_meas *m = vres_xmalloc(sizeof *m * (walls.n ? walls.n : 1));
-            size_t nm = 0;
-        for (size_t j = 0; j < walls.n; j++) {
-            size_t i = walls.it[j].i;
-            const float *nv = &d->normal[3 * i];
-            if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) continue; /* no normal: a DBC wall */
-            m[nm].mk = d->mk ? d->mk[i] : 0;
-            m[nm].v = wall_thickness(&walls, d, i, nv, s->dim, 2 * d->h, &m[nm].tag);
-            nm++;
-        }
+        int32_t *seen = vres_xmalloc(sizeof *seen * (walls.n ? walls.n : 1)); /* mks the fluid touches */
+        size_t nm = 0, nseen = 0;
+        /* measured where the fluid touches the wall; a store of one domain holds every wall
+           whole, so an mk the fluid does not touch yet is measured all over, but a partitioned
+           domain keeps of a wall only what its fluid reaches (vres-partition) */
+        for (int all = 0; all <= (s->ndomains == 1); all++)
+            for (size_t j = 0; j < walls.n; j++) {
+                size_t i = walls.it[j].i;
+                const float *nv = &d->normal[3 * i];
+                if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) continue; /* no normal: a DBC wall */
+                int32_t mk = d->mk ? d->mk[i] : 0;
+                if (!all && !touches_fluid(&fluid, d, i, s->dim)) continue;
+                if (all && mk_in(seen, nseen, mk)) continue;
+                if (!all && !mk_in(seen, nseen, mk)) seen[nseen++] = mk;
+                m[nm].mk = mk;
+                m[nm].v = wall_thickness(&walls, d, i, nv, s->dim, 2 * d->h, &m[nm].tag);
+                nm++;
+            }
         qsort(m, nm, sizeof *m, meas_cmp);
         for (size_t a = 0, b; a < nm; a = b) {
             for (b = a; b < nm && m[b].mk == m[a].mk; b++) {}
-            double med = m[a + (b - a) / 2].v; /* the median: a corner or an odd normal does not decide */
+            const pf_meas *med = &m[a + (b - a) / 2]; /* the median: a corner or an odd normal does not decide */
             /* the first fluid particle lies dp from the first wall layer: its support 2h takes in
                the layers less than 2h away, that is 2h - dp of wall (on the lattice: the layers
                up to ceil(2h/dp) - 1) */
             int need = (int)ceil(2 * d->h / d->dp - 1e-9) - 1;
-            if (med >= need * d->dp * (1 - 1e-9)) continue;
+            if (med->v >= need * d->dp * (1 - 1e-9)) continue;
             char pre[32];
             dom_prefix(pre, sizeof pre, s, k);
-            vres_error("%s: %sBoundary=2 (mDBC): the walls of mk %d are %g m thick (%g layer%s of dp %g m, the median "
-                       "along the normals of its %zu particles with a normal), thinner than the kernel support 2h = %g "
-                       "m less the dp between them and the fluid: the fluid next to them would leak through; draw them "
-                       "%d layers thick (<layers vdp=\"0,1,...\">) or use Boundary=1 (DBC)", s->name ? s->name : "case",
-                       pre, (int)m[a].mk, med, med / d->dp, med == d->dp ? "" : "s", d->dp, b - a, 2 * d->h, need);
+            vres_error("%s: %sBoundary=2 (mDBC): the walls of mk %d are %g m thick (%d layer%s of dp %g m, the median "
+                       "along the normals of the %zu of its particles with a normal %s), thinner than the kernel support "
+                       "2h = %g m less the dp between them and the fluid: the fluid next to them would leak through; draw "
+                       "them %d layers thick (<layers vdp=\"0,1,...\">) or use Boundary=1 (DBC)", s->name ? s->name : "case",
+                       pre, (int)m[a].mk, med->v, med->tag, med->tag == 1 ? "" : "s", d->dp, b - a,
+                       mk_in(seen, nseen, m[a].mk) ? "the fluid touches" : "(the fluid touches none yet)", 2 * d->h, need);
             nprob++;
         }
+        free(seen);
         free(m);
         grid_free(&walls);
+        grid_free(&fluid);
     }
     return nprob;
 }
@@ -321,7 +357,9 @@ static int check_channels(const vres_store *s, size_t k, const pf_grid *fluid, c
     return nprob;
 }
 
-/* Wall bodies of one mk smaller, in their largest extent, than the kernel's diameter 4h. */
+/* Wall bodies of one mk smaller, in their largest extent, than the kernel support 2h: a body
+ * narrower than one particle's reach (a handful of particles, 2 at the usual h = sqrt(2) dp in
+ * 2D) is no shape the flow can see. */
 static int check_bodies(const vres_store *s, size_t k, const pf_grid *walls)
 {
     const vres_domain *d = &s->dom[k];
@@ -344,13 +382,13 @@ static int check_bodies(const vres_store *s, size_t k, const pf_grid *walls)
         /* in a refinement box the body is drawn again at the box's dp */
         double hb = local_h(s, mid, d->h), dpb = d->dp * hb / d->h;
         int n = (int)lround(ext / dpb) + 1; /* particles across its largest extent */
-        if (n * dpb >= 4 * hb * (1 - 1e-9)) continue;
+        if (n * dpb >= 2 * hb * (1 - 1e-9)) continue;
         char pre[32];
         dom_prefix(pre, sizeof pre, s, k);
         vres_error("%s: %sthe body of mk %d is %d particle%s across at most (%g m at dp %g m, from (%g, %g, %g) to (%g, "
-                   "%g, %g)), fewer than the kernel's diameter 4h = %g m: the flow cannot resolve it; use a smaller dp",
+                   "%g, %g)), smaller than the kernel support 2h = %g m: the flow cannot resolve it; use a smaller dp",
                    s->name ? s->name : "case", pre, (int)m[a].mk, n, n == 1 ? "" : "s", n * dpb, dpb, lo[0], lo[1],
-                   lo[2], hi[0], hi[1], hi[2], 4 * hb);
+                   lo[2], hi[0], hi[1], hi[2], 2 * hb);
         nprob++;
     }
     free(m);

@@ -13,9 +13,11 @@
  * time step is checked. Prints each problem as one line (vres_error) and returns their count. */
 int vres_preflight(const vres_store *s, int fresh);
 
-/* The mDBC check alone (Boundary=2): every wall mk whose particles with a normal measure,
- * along their normals (median over the mk), thinner than the kernel support 2h of the first
- * fluid particle reaches into it (2h - dp: it lies dp from the first layer). Returns the problems printed. */
+/* The mDBC check alone (Boundary=2): every wall mk whose particles with a normal that the
+ * fluid touches (all of them in a store of one domain where it touches none yet) measure,
+ * along their normals (the median over the mk), thinner than the kernel support 2h of the first
+ * fluid particle reaches into it (2h - dp: it lies dp from the first layer). Returns the
+ * problems printed. */
 int vres_preflight_mdbc_walls(const vres_store *s);
 
 /* The time-step check alone: DtMin (or CoefDtMin h/c0) at or above the largest step the run
@@ -23,9 +25,9 @@ int vres_preflight_mdbc_walls(const vres_store *s);
  * printed. */
 int vres_preflight_dtmin(const vres_store *s);
 
-/* The resolution check alone: fluid of one mk whose typical width between two walls, or a wall
- * body whose largest extent, is fewer particles than the kernel's diameter 4h. Returns the
- * problems printed. */
+/* The resolution check alone: fluid of one mk whose typical width between two walls is fewer
+ * particles than the kernel's diameter 4h, or a wall body whose largest extent is smaller than
+ * the kernel support 2h. Returns the problems printed. */
 int vres_preflight_resolution(const vres_store *s);
 
 #endif

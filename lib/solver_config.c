@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "log.h"
-#include "preflight.h"
 #include "solver_motion.h"
 #include "solver_run.h"
 
@@ -320,7 +319,6 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     if (loop && !c->general && strcmp(loop, "specialised"))
         vres_warn("VRES_LOOP=%s not known (general or specialised): using the specialised loop", loop);
     if (c->general) vres_info("VRES_LOOP=general: the general interaction loop (options tested at run time)");
-    if (vres_preflight(s, s->step == 0) != 0) bad = 1; /* set-ups no run survives (preflight.h) */
     notes(s);
     return bad ? -1 : 0;
 }

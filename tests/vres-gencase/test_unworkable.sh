@@ -2,7 +2,8 @@
 # vres-gencase --check refuses the set-ups no run survives, each with one message naming the
 # thing and the measure, exit 1 and nothing written (lib/preflight.c; vres-run refuses the same
 # at its start: tests/vres-run/test_unworkable.sh): single-layer walls switched to mDBC, a
-# channel and a body fewer particles across than the kernel's diameter 4h, a DtMin the first
+# channel fewer particles across than the kernel's diameter 4h and a body smaller than its
+# support 2h, a DtMin the first
 # step cannot reach, a refinement box its parent's buffer bands fill. The same set-ups drawn
 # right pass.
 source "$(dirname "$0")/../harness.sh"
@@ -20,7 +21,7 @@ refuse() {
 # DualSPHysics' dam break (single-layer walls, whose faces give normals) switched to mDBC at dp
 # 0.02: h = 0.0282843 m, the fluid next to a wall sees 2h - dp = 1.83 dp of it: 2 layers needed
 refuse "single-layer walls under mDBC" \
-    "dambreak2d: Boundary=2 \(mDBC\): the walls of mk 0 are 0\.02 m thick \(1 layer of dp 0\.02 m, the median along the normals of its 501 particles with a normal\), thinner than the kernel support 2h = 0\.0565685 m less the dp between them and the fluid: the fluid next to them would leak through; draw them 2 layers thick" \
+    "dambreak2d: Boundary=2 \(mDBC\): the walls of mk 0 are 0\.02 m thick \(1 layer of dp 0\.02 m, the median along the normals of the 153 of its particles with a normal the fluid touches\), thinner than the kernel support 2h = 0\.0565685 m less the dp between them and the fluid: the fluid next to them would leak through; draw them 2 layers thick" \
     --dp 0.02 --set Boundary=2 "$DB"
 # the same, its XML edited: the mDBC dam break with one layer instead of three
 sed 's|<layers vdp="0,1,2" />|<layers vdp="0" />|' "$CASES/dsph_dambreak2d_mdbc/dambreak2d_mdbc_Def.xml" >"$T/one.xml"
@@ -35,14 +36,14 @@ refuse "a channel 4 particles across" \
     --dp 2.5e-4 "$CASES/poiseuille2d/poiseuille2d_Def.xml"
 expect 0 "10 particles across pass" "$BIN/vres-gencase" -q --check --dp 1e-4 "$CASES/poiseuille2d/poiseuille2d_Def.xml"
 
-# a post 0.04 m square (mk 1) on the dam break's floor at dp 0.01: 5 particles across, 4h = 0.0566 m
+# a post 0.01 m square (mk 1) on the dam break's floor at dp 0.01: 2 particles across, 2h = 0.0283 m
 post() { sed "s|</mainlist>|<setmkbound mk=\"1\" /><drawbox><boxfill>solid</boxfill><point x=\"2\" y=\"-1\" z=\"0.01\" /><size x=\"$1\" y=\"2\" z=\"$1\" /></drawbox></mainlist>|" "$DB"; }
-post 0.04 >"$T/post.xml"
-refuse "a body 5 particles across" \
-    "post: the body of mk 1 is 5 particles across at most \(0\.05 m at dp 0\.01 m, from \(2, 0, 0\.01\) to \(2\.04, 0, 0\.05\)\), fewer than the kernel's diameter 4h = 0\.0565685 m" \
+post 0.01 >"$T/post.xml"
+refuse "a body 2 particles across" \
+    "post: the body of mk 1 is 2 particles across at most \(0\.02 m at dp 0\.01 m, from \(2, 0, 0\.01\) to \(2\.01, 0, 0\.02\)\), smaller than the kernel support 2h = 0\.0282843 m" \
     "$T/post.xml"
-post 0.1 >"$T/post10.xml"
-expect 0 "a body 11 particles across passes" "$BIN/vres-gencase" -q --check "$T/post10.xml"
+post 0.02 >"$T/post3.xml"
+expect 0 "a body 3 particles across passes" "$BIN/vres-gencase" -q --check "$T/post3.xml"
 
 # time steps: at dp 0.01 no step is longer than cflnumber h/c0 = 0.2 x 0.0141421 / 88.3672 s
 refuse "DtMin above every step" \
