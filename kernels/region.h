@@ -38,11 +38,11 @@ enum {
 /* The boxes of one domain (see above), corners in m. */
 typedef struct vres_region {
     int parent;                       /* parent domain, -1 for the root */
+    int track;                        /* 1 when the box follows a body: the boxes below are in its frame at t = 0 */
     double fluid_lo[3], fluid_hi[3];  /* fluid region */
     double buff_lo[3], buff_hi[3];    /* outer edge of its own buffer band (the root: fluid) */
     double hole_lo[3], hole_hi[3];    /* in the parent: the parent's fluid lies outside */
     double inner_lo[3], inner_hi[3];  /* in the parent: the parent keeps nothing inside */
-    int track;                        /* 1 when the box follows a body: the boxes above are in its frame at t = 0 */
     vres_motion_state mot;            /* track: the box's motion since t = 0 (R, d) and its rigid velocity now */
     double track_until;               /* track: the time (s) up to which vres-partition drew its walls along its path */
 } vres_region;
