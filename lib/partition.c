@@ -363,20 +363,14 @@ static void check_bodies(plan *p, int k)
  * ---------------------------------------------------------------------------------------- */
 
 /* What a box that follows a body needs: a body with a prescribed motion (a floating one is
- * refused by name), a parent box that stands still, no box inside it, no face on the
- * simulation domain's edge (a face there would leave the edge), and a TimeMax (its walls are
- * drawn along its path up to then). A box inside a tracking box is refused too. */
+ * refused by name), no face on the simulation domain's edge (a face there would leave the
+ * edge), and a TimeMax (its walls are drawn along its path up to then). Boxes may nest: each
+ * follows its own body (or stands still), and check_path keeps each inside its parent. */
 static void check_tracking(plan *p, int k)
 {
     pdom *d = &p->d[k];
     const vres_store *s = p->s;
-    char name[64];
-    if (d->tracking_mk < 0) {
-        if (p->d[d->parent].tracking_mk >= 0)
-            perr(p, k, "it lies in %s, which follows a body: boxes inside a tracking box are not implemented yet",
-                 bname(p, d->parent, name, sizeof name));
-        return;
-    }
+    if (d->tracking_mk < 0) return;
     d->body = vres_track_body(s, d->tracking_mk);
     if (d->body < 0) {
         int floating = 0;
@@ -390,7 +384,6 @@ static void check_tracking(plan *p, int k)
             perr(p, k, "<tracking mkbound=\"%d\">: no body with a <motion> has that mkbound", d->tracking_mk);
         return;
     }
-    if (p->d[d->parent].tracking_mk >= 0) return; /* refused above, as a box inside a tracking box */
     if (d->open)
         perr(p, k, "it follows mkbound %d but reaches the simulation domain's edge: a tracking box must lie inside "
                    "the domain (its faces there would move off it)", d->tracking_mk);
@@ -448,47 +441,60 @@ static int make_sweep(plan *p)
     return 0;
 }
 
-/* The box [lo, hi] of domain j's frame where sample i of the sweep has it: the axis-aligned box
- * [wlo, whi] around it (m); the box itself for a domain that stands still. */
-static void box_at(const plan *p, int j, size_t i, const double lo[3], const double hi[3], double wlo[3],
+/* The box [lo, hi] of domain j's frame where sample i of the sweep has it, seen in the frame of
+ * domain f (-1: the world's): the axis-aligned box [wlo, whi] around it there (m). */
+static void box_in(const plan *p, int j, int f, size_t i, const double lo[3], const double hi[3], double wlo[3],
                    double whi[3])
 {
-    const pdom *d = &p->d[j];
-    if (d->body < 0 || !p->sw.n) {
+    const int bj = p->sw.n ? p->d[j].body : -1, bf = p->sw.n && f >= 0 ? p->d[f].body : -1;
+    if (bj == bf) { /* both stand still, or follow the same body: the box as it is */
         memcpy(wlo, lo, 3 * sizeof *wlo), memcpy(whi, hi, 3 * sizeof *whi);
         return;
     }
-    const vres_motion_state *m = &p->sw.mv[i * p->sw.nbodies + (size_t)d->body];
+    vres_region mj, mf; /* the two motions, through region.h's maps */
+    memset(&mj, 0, sizeof mj), memset(&mf, 0, sizeof mf);
+    mj.track = bj >= 0, mf.track = bf >= 0;
+    if (bj >= 0) mj.mot = p->sw.mv[i * p->sw.nbodies + (size_t)bj];
+    if (bf >= 0) mf.mot = p->sw.mv[i * p->sw.nbodies + (size_t)bf];
     for (int a = 0; a < 3; a++) wlo[a] = INFINITY, whi[a] = -INFINITY;
     for (int c = 0; c < 8; c++) {
         const double x[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]};
-        for (int a = 0; a < 3; a++) {
-            double y = m->R[3 * a] * x[0] + m->R[3 * a + 1] * x[1] + m->R[3 * a + 2] * x[2] + m->d[a];
-            wlo[a] = fmin(wlo[a], y), whi[a] = fmax(whi[a], y);
-        }
+        double w[3], y[3];
+        vres_region_world(&mj, x, w);
+        const double *q = vres_region_local(&mf, w, y);
+        for (int a = 0; a < 3; a++) wlo[a] = fmin(wlo[a], q[a]), whi[a] = fmax(whi[a], q[a]);
     }
 }
 
-/* Along its path a tracking box k and its buffer band stay inside its parent's box (but where
- * the parent reaches the domain's edge) and out of its siblings' boxes and bands. */
+/* The box [lo, hi] of domain j's frame where sample i has it, in the world (box_in). */
+static void box_at(const plan *p, int j, size_t i, const double lo[3], const double hi[3], double wlo[3],
+                   double whi[3])
+{
+    box_in(p, j, -1, i, lo, hi, wlo, whi);
+}
+
+/* Along its path a box k that moves or stands in a box that moves stays, with its buffer band,
+ * inside its parent's box (in the parent's frame; but where the parent reaches the domain's
+ * edge) and out of its siblings' boxes and bands. */
 static void check_path(plan *p, int k)
 {
     const pdom *d = &p->d[k], *q = &p->d[d->parent];
     char name[64];
     for (size_t i = 0; i < p->sw.n; i++) {
         const double t = p->sw.tmax * (double)i / (double)(p->sw.n - 1);
-        double blo[3], bhi[3], flo[3], fhi[3];
+        double blo[3], bhi[3], flo[3], fhi[3], plo[3], phi[3];
         box_at(p, k, i, d->reg.buff_lo, d->reg.buff_hi, blo, bhi);
         box_at(p, k, i, d->reg.fluid_lo, d->reg.fluid_hi, flo, fhi);
+        box_in(p, k, d->parent, i, d->reg.buff_lo, d->reg.buff_hi, plo, phi);
         for (int a = 0; d->parent > 0 && a < 3; a++) {
             if (p->dim == 2 && a == 1) continue;
             double tol = TIE * d->dp;
-            if ((!(q->open & VRES_FACE(a, 0)) && blo[a] < q->reg.fluid_lo[a] - tol) ||
-                (!(q->open & VRES_FACE(a, 1)) && bhi[a] > q->reg.fluid_hi[a] + tol)) {
-                perr(p, k, "following mkbound %d it leaves its parent %s at t = %g s: the box and its buffer band "
-                           "(%g to %g m along %c) must stay in the parent's box (%g to %g m) up to TimeMax",
-                     d->tracking_mk, bname(p, d->parent, name, sizeof name), t, blo[a], bhi[a], "xyz"[a],
-                     q->reg.fluid_lo[a], q->reg.fluid_hi[a]);
+            if ((!(q->open & VRES_FACE(a, 0)) && plo[a] < q->reg.fluid_lo[a] - tol) ||
+                (!(q->open & VRES_FACE(a, 1)) && phi[a] > q->reg.fluid_hi[a] + tol)) {
+                perr(p, k, "it leaves its parent %s at t = %g s: the box and its buffer band (%g to %g m along %c, "
+                           "in the parent's frame) must stay in the parent's box (%g to %g m) up to TimeMax",
+                     bname(p, d->parent, name, sizeof name), t, plo[a], phi[a], "xyz"[a], q->reg.fluid_lo[a],
+                     q->reg.fluid_hi[a]);
                 return;
             }
         }
@@ -499,9 +505,8 @@ static void check_path(plan *p, int k)
             box_at(p, j, i, e->reg.buff_lo, e->reg.buff_hi, eblo, ebhi);
             box_at(p, j, i, e->reg.fluid_lo, e->reg.fluid_hi, eflo, efhi);
             if (overlaps(p->dim, blo, bhi, eflo, efhi) || overlaps(p->dim, flo, fhi, eblo, ebhi)) {
-                perr(p, k, "following mkbound %d it reaches into its sibling %s at t = %g s: sibling boxes with their "
-                           "buffer bands must not reach into each other up to TimeMax",
-                     d->tracking_mk, bname(p, j, name, sizeof name), t);
+                perr(p, k, "it reaches into its sibling %s at t = %g s: sibling boxes with their buffer bands must not "
+                           "reach into each other up to TimeMax", bname(p, j, name, sizeof name), t);
                 return;
             }
         }
@@ -738,7 +743,7 @@ int vres_partition(vres_store *s, const vres_part_opts *o)
     if (!p->nerr) make_sweep(p);
     for (int k = 1; k < p->n && !p->nerr; k++) check_nesting(p, k);
     for (int k = 1; k < p->n && !p->nerr; k++)
-        if (p->d[k].body >= 0) check_path(p, k);
+        if (p->d[k].body >= 0 || p->d[p->d[k].parent].body >= 0) check_path(p, k);
     for (int k = 1; k < p->n && !p->nerr; k++) check_bodies(p, k);
     vres_domain *nd = p->nerr ? NULL : build_domains(p);
     if (!nd) {
