@@ -234,6 +234,7 @@ static vres_store *gencase(const char *path, const char *from, const char *to)
 }
 
 #define PLATE "cases/tracking_plate2d/tracking_plate2d_Def.xml"
+#define TANK "cases/tank_vres3d/tank_vres3d_Def.xml"
 
 START_TEST(plate_motion)
 {
@@ -348,6 +349,90 @@ START_TEST(refusals)
 }
 END_TEST
 
+/* cases/tank_vres3d with a cube (mkbound 1, 0.04 m a side, at the box's centre) turning at 60
+ * deg/s about the vertical through its centre, and the box following it. */
+static vres_store *turning_tank(int track)
+{
+    unsigned char *text;
+    size_t len;
+    ck_assert_int_eq(vres_read_all(TANK, &text, &len), 0);
+    const char *src = (const char *)text;
+    const char *ml = strstr(src, "</mainlist>"), *vr = strstr(src, "<vres>"), *bb = strstr(src, "</bufferbox>");
+    ck_assert(ml && vr && bb && ml < vr && vr < bb);
+    char *made = vres_xasprintf(
+        "%.*s<setmkbound mk=\"1\" /> <drawbox> <boxfill>solid</boxfill> <point x=\"0.18\" y=\"0.18\" z=\"0.08\" />"
+        " <size x=\"0.04\" y=\"0.04\" z=\"0.04\" /> </drawbox> %.*s<motion> <objreal ref=\"1\"> <begin mov=\"1\" "
+        "start=\"0\" /> <mvrot id=\"1\" duration=\"-1\"> <vel ang=\"60\" /> <axisp1 x=\"0.2\" y=\"0.2\" z=\"0\" />"
+        " <axisp2 x=\"0.2\" y=\"0.2\" z=\"1\" /> </mvrot> </objreal> </motion> %.*s%s%s",
+        (int)(ml - src), src, (int)(vr - ml), ml, (int)(bb - vr), vr, track ? "<tracking mkbound=\"1\" /> " : "", bb);
+    vres_case_opts o = {0, 0, NULL, NULL, NULL};
+    vres_store *s = vres_case_read(made, strlen(made), TANK, "cases", &o);
+    free(text);
+    free(made);
+    ck_assert_ptr_nonnull(s);
+    return s;
+}
+
+/* The walls of domain k of s within distance r (m) of point c, in the x-y plane, whose z is
+ * below zmax. */
+static size_t walls_near(const vres_store *s, int k, const double c[2], double r, double zmax)
+{
+    const vres_domain *d = &s->dom[k];
+    size_t n = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->type[i] != VRES_FIXED || d->pos[3 * i + 2] > zmax) continue;
+        double dx = d->pos[3 * i] - c[0], dy = d->pos[3 * i + 1] - c[1];
+        n += dx * dx + dy * dy <= r * r;
+    }
+    return n;
+}
+
+START_TEST(turning_3d)
+{
+    /* the same code in 3D: the tank's box turning about z with the cube; the box's floor walls
+       cover the disc its band sweeps in 0.3 s (18 degrees), the standing box's its own square;
+       six faces of segments, all laid; the moved regions classify as in the frame */
+    vres_part_opts o;
+    memset(&o, 0, sizeof o);
+    vres_store *still = turning_tank(0), *s = turning_tank(1);
+    ck_assert_int_eq(vres_partition(still, &o), 0);
+    ck_assert_int_eq(vres_partition(s, &o), 0);
+    ck_assert_int_eq(s->region[1].track, 1);
+    ck_assert_int_eq(still->region[1].track, 0);
+    ck_assert_uint_eq(s->iface[0].n, still->iface[0].n);
+    ck_assert_uint_eq(s->iface[1].n, still->iface[1].n);
+    const vres_region *r = &s->region[1];
+    const double *bl = r->buff_lo, *bh = r->buff_hi, dp = s->dom[1].dp;
+    /* the band's six faces at dp^2 each (vres_segments_layout's rounding: whole dp) */
+    size_t faces = 0;
+    for (int a = 0; a < 3; a++) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        faces += 2 * (size_t)lround((bh[b] - bl[b]) / dp) * (size_t)lround((bh[c] - bl[c]) / dp);
+    }
+    ck_assert_uint_eq(s->iface[0].n, faces);
+    /* the floor under the band's corner: at 18 degrees the corner (the band's half-diagonal from
+       the axis) has moved 0.31 x the radius sideways, out of the standing box's reach */
+    const double ctr[2] = {0.2, 0.2}, half = 0.5 * (bh[0] - bl[0]);
+    const double R = sqrt(2.0) * half, sup = 2 * s->dom[1].h;
+    ck_assert_uint_gt(walls_near(s, 1, ctr, R + sup, 0), walls_near(still, 1, ctr, R + sup, 0));
+    ck_assert_uint_eq(walls_near(s, 1, ctr, 10, 0), walls_near(s, 1, ctr, R + sup + 2 * dp, 0));
+    /* classification at 0.2 s (12 degrees): the box's centre column fluid, a point just inside
+       its turned band's corner buffer, the same point unturned out */
+    vres_track_at(&s->region[1], &s->body[vres_track_body(s, 1)], 0.2);
+    const double th = 0.2 * PI / 3, c0[3] = {bh[0] - 0.5 * dp, bh[1] - 0.5 * dp, 0.1};
+    const double w[3] = {0.2 + cos(th) * (c0[0] - 0.2) - sin(th) * (c0[1] - 0.2),
+                         0.2 + sin(th) * (c0[0] - 0.2) + cos(th) * (c0[1] - 0.2), 0.1};
+    int donor;
+    ck_assert_int_eq(vres_region_classify(s->region, 2, 1, w, 3, &donor), VRES_REGION_BUFFER);
+    ck_assert_int_eq(donor, 0);
+    ck_assert_int_eq(vres_region_classify(s->region, 2, 1, c0, 3, &donor), VRES_REGION_OUT);
+    const double mid[3] = {0.2, 0.2, 0.1};
+    ck_assert_int_eq(vres_region_classify(s->region, 2, 1, mid, 3, &donor), VRES_REGION_FLUID);
+    vres_store_free(s);
+    vres_store_free(still);
+}
+END_TEST
+
 START_TEST(owner_and_store)
 {
     /* the plate's partition with its box moved 0.05 m: a point of the moved box belongs to D1, the
@@ -404,6 +489,7 @@ int main(void)
     tcase_add_test(t, plate_motion);
     tcase_add_test(t, plate_partition);
     tcase_add_test(t, refusals);
+    tcase_add_test(t, turning_3d);
     tcase_add_test(t, owner_and_store);
     suite_add_tcase(su, t);
     return vres_check_run(su);
