@@ -513,24 +513,53 @@ static void check_path(plan *p, int k)
     }
 }
 
+/* 1 when a wall that does not move, at x, lies away from every tracking box's path: outside the
+ * box around all the places of each one's buffer box, grown by g (m). Its region tests then
+ * come out the same at every sample. */
+static int off_paths(const plan *p, const double (*lo)[3], const double (*hi)[3], const double x[3], double g)
+{
+    for (int j = 1; j < p->n; j++)
+        if (p->d[j].body >= 0 && vres_region_in_box(lo[j], hi[j], g, x, p->dim)) return 0;
+    return 1;
+}
+
 /* For each wall particle of src, keep[i] = 1 when domain k needs it at some sample of the
  * sweep: each tracking region where the sample has it, each moving wall where its body is, the
- * kernel support grown by the samples' spacing (vres_region_keeps_wall at every sample). */
+ * kernel support grown by the samples' spacing (vres_region_keeps_wall at every sample). A
+ * wall that does not move and lies off every tracking box's path is decided at the first
+ * sample alone. */
 static void swept_walls(const plan *p, int k, const vres_domain *src, double support, uint8_t *keep)
 {
     vres_region *reg = vres_xmalloc(sizeof *reg * (size_t)p->n);
-    for (int j = 0; j < p->n; j++) reg[j] = p->d[j].reg;
+    double (*lo)[3] = vres_xcalloc((size_t)p->n, sizeof *lo), (*hi)[3] = vres_xcalloc((size_t)p->n, sizeof *hi);
+    for (int j = 0; j < p->n; j++) {
+        reg[j] = p->d[j].reg;
+        for (int a = 0; a < 3; a++) lo[j][a] = INFINITY, hi[j][a] = -INFINITY;
+        for (size_t i = 0; p->d[j].body >= 0 && i < p->sw.n; i++) {
+            double wl[3], wh[3];
+            box_at(p, j, i, p->d[j].reg.buff_lo, p->d[j].reg.buff_hi, wl, wh);
+            for (int a = 0; a < 3; a++) lo[j][a] = fmin(lo[j][a], wl[a]), hi[j][a] = fmax(hi[j][a], wh[a]);
+        }
+    }
+    const double g = support + 2 * p->sw.step;
+    uint8_t *done = vres_xcalloc(src->n ? src->n : 1, 1);
     memset(keep, 0, src->n ? src->n : 1);
     for (size_t i = 0; i < p->sw.n; i++) {
         for (int j = 1; j < p->n; j++)
             if (p->d[j].body >= 0) reg[j].mot = p->sw.mv[i * p->sw.nbodies + (size_t)p->d[j].body];
         for (size_t q = 0; q < src->n; q++) {
-            if (keep[q] || !vres_ptype_is_wall(src->type[q])) continue;
+            if (keep[q] || done[q] || !vres_ptype_is_wall(src->type[q])) continue;
             double x[3];
             vres_sweep_place(p->s, &p->sw, i, src->type[q], src->mk[q], &src->pos[3 * q], x);
             keep[q] = (uint8_t)vres_region_keeps_wall(reg, p->n, k, x, p->dim, support + p->sw.step);
+            const int moves = src->type[q] == VRES_MOVING && vres_track_body(p->s, src->mk[q]) >= 0;
+            done[q] = i == 0 && !moves && off_paths(p, (const double (*)[3])lo,
+                                                                                   (const double (*)[3])hi, x, g);
         }
     }
+    free(done);
+    free(lo);
+    free(hi);
     free(reg);
 }
 
