@@ -29,7 +29,8 @@
  *
  * The same pass counts what the donor's fluid particles actually carried across each segment
  * (vres_couple_crossing, exact by construction); lib/solver_couple.c keeps the total the
- * interpolated flux accumulates over a donor's segments to that count (VRES_FLUX_BALANCED). */
+ * interpolated flux accumulates over a donor's segments from exceeding that count (VRES_FLUX_CAPPED,
+ * the default), or to that count both ways (VRES_FLUX_BALANCED). */
 #ifndef VRES_KERNELS_COUPLE_H
 #define VRES_KERNELS_COUPLE_H
 
@@ -86,7 +87,7 @@ typedef struct vres_segments {
     float *rho;            /* [nseg] the donor's interpolated density there (kg/m^3), NaN without support */
     float *vel;            /* [3 nseg] the donor's interpolated velocity there (m/s) */
     uint8_t *state;        /* [nseg] VRES_SEG_* of the last update */
-    int method;            /* how the mass is measured: VRES_FLUX_BALANCED (default), _INTERP or _CROSSING */
+    int method;            /* how the mass is measured: VRES_FLUX_CAPPED (default), _INTERP, _BALANCED or _CROSSING */
     double *dm;            /* [nseg] BALANCED: the interpolated increment of the last update (kg) where the donor's
                               fluid fills half its support or more (Shepard sum >= 0.5), else 0: the balance's weights */
     double *cross;         /* [nseg] BALANCED: the donor mass that crossed it in the last update (kg) */
@@ -97,6 +98,10 @@ typedef struct vres_segments {
                                 (the segment pass gives both; lib/solver_couple.c balances) */
 #define VRES_FLUX_INTERP 1   /* -rho* (v* - v_box) . n A dt from the interpolated donor, gated (DESIGN 5) */
 #define VRES_FLUX_CROSSING 2 /* the donor's fluid particles that crossed it over the step (vres_couple_crossing) */
+#define VRES_FLUX_CAPPED 3   /* the interpolated flux, its sum over a donor's segments kept from exceeding what
+                                crossed them (lib/solver_couple.c): never more mass than the donor brought */
+#define VRES_FLUX_DEFAULT VRES_FLUX_CAPPED /* vres-run's flux without --vres-flux (vres-run(1)): the interpolated
+                                            flux alone made 18% too much water in cases/dambreak_vres3d's box */
 
 /* What happened to a segment in the last update (vres_segments.state). */
 #define VRES_SEG_FLUX 0     /* accumulated dm (negative for outflow) */
@@ -322,7 +327,8 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
     S.rho[s] = (float)r.rho;
     for (int a = 0; a < 3; a++) S.vel[3 * s + a] = (float)r.v[a];
     const double dpmin = dp < D->dp ? dp : D->dp;
-    if (S.method == VRES_FLUX_BALANCED) {
+    const int counts = S.method == VRES_FLUX_BALANCED || S.method == VRES_FLUX_CAPPED;
+    if (counts) {
         S.dm[s] = 0;
         S.cross[s] = vres_couple_crossing(D, p, n, S.area[s], &S.vbox[3 * s], dt);
     }
@@ -340,6 +346,7 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
         const double dm = vres_couple_dm(r.rho, r.v, &S.vbox[3 * s], n, S.area[s], dt);
         S.mass[s] = vres_couple_accumulate(S.mass[s], dm);
         S.state[s] = VRES_SEG_FLUX;
+        if (S.method == VRES_FLUX_CAPPED) S.dm[s] = dm; /* every inflow segment shares a reduction */
         if (S.method == VRES_FLUX_BALANCED) {
             /* the balance's corrections go only where the donor's fluid fills at least half the
                support (its Shepard sum, walls not counted): not to a thin front's few open

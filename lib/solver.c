@@ -398,7 +398,7 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 1);
         return VRES_RUN_FAIL;
     }
-    set.couple = vres_couple_open(s, &c, o->restart, o->vres_order);
+    set.couple = vres_couple_open(s, &c, o->restart, o->vres_order, o->vres_flux);
     announce(s, &set, &c, o, dev);
     if (o->tmax > 0) vres_params_set1(&s->params, "TimeMax", c.tmax, "s", "set");
     if (o->tout > 0) vres_params_set1(&s->params, "TimeOut", c.tout, "s", "set");

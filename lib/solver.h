@@ -25,6 +25,8 @@ typedef struct vres_run_opts {
     double checkpoint;   /* wall-clock seconds between checkpoint.h5 writes; <= 0: only at the end and on a signal */
     const char *vres_order; /* --vres-order: "1", "2" or "auto" (buffer interpolation); NULL: the restarted
                                run's, else auto */
+    const char *vres_flux;  /* --vres-flux: how interface segments measure mass (vres_couple_flux_parse);
+                               NULL: VRES_FLUX, else the restarted run's, else the default */
 } vres_run_opts;
 
 /* Check that the store is one this solver runs (refusing anything it would have to ignore)

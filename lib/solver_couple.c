@@ -35,9 +35,9 @@ typedef struct couple_dom {
     double *pos0;         /* [3 nseg] centres in their box's frame at t = 0 (m), NULL when none moves (track.h) */
     double *normal0;      /* [3 nseg] normals in that frame, NULL likewise */
     double *mass;         /* [nseg] accumulated mass (kg) */
-    double *crossed;      /* [nseg] BALANCED: donor mass that crossed it, less what it created (kg) */
-    double *dm;           /* [nseg] BALANCED: the last update's interpolated increment (kg), 0 where gated */
-    double *cross;        /* [nseg] BALANCED: the donor mass that crossed it in the last update (kg) */
+    double *crossed;      /* [nseg] CAPPED, BALANCED: donor mass that crossed it, less what it created (kg) */
+    double *dm;           /* [nseg] CAPPED, BALANCED: the last update's interpolated increment (kg), 0 where gated */
+    double *cross;        /* [nseg] CAPPED, BALANCED: the donor mass that crossed it in the last update (kg) */
     int32_t *donor;       /* [nseg] donor domain of each segment */
     float *rho;           /* [nseg] interpolated density at the last update (kg/m^3) */
     float *vel;           /* [3 nseg] interpolated velocity at the last update (m/s) */
@@ -60,7 +60,7 @@ struct vres_couple {
     int fresh;            /* 1 when the buffers hold their donors' values for the current positions */
     double wall;          /* wall-clock time spent in the coupling since it was opened (s) */
     vres_couple_parts part; /* that time by part (s), the start's excluded as from wall */
-    int flux;             /* how segments measure mass: VRES_FLUX_INTERP, or (VRES_FLUX=balanced|crossing) the others */
+    int flux;             /* how segments measure mass: VRES_FLUX_* (kernels/couple.h), --vres-flux */
     int order;            /* order of the buffer interpolation: 1, 2 or VRES_COUPLE_ORDER_AUTO (2 from coarser donors) */
     const vres_body **track; /* [ndom] the body each domain's box follows (the store's), NULL entries for boxes that
                                 stand still; NULL when no box moves */
@@ -161,7 +161,18 @@ static void track_move(vres_couple *C, double t)
     }
 }
 
-vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order)
+int vres_couple_flux_parse(const char *name)
+{
+    static const struct { const char *name; int flux; } k[] = {
+        {"capped", VRES_FLUX_CAPPED}, {"interp", VRES_FLUX_INTERP}, {"balanced", VRES_FLUX_BALANCED},
+        {"crossing", VRES_FLUX_CROSSING}};
+    for (size_t i = 0; i < sizeof k / sizeof k[0]; i++)
+        if (!strcmp(name, k[i].name)) return k[i].flux;
+    return -1;
+}
+
+vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order,
+                              const char *flux)
 {
     if (s->ndomains < 2) return NULL;
     vres_couple *C = vres_xcalloc(1, sizeof *C);
@@ -175,15 +186,15 @@ vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restart
     C->next_id = vres_store_next_id(s);
     C->mass0 = restarted ? vres_params_get(&s->params, "run_mass0", -1) : -1;
     C->fresh = restarted;
-    const char *fx = getenv("VRES_FLUX");
-    /* the interpolated flux stays the default: the balanced one conserves mass better but its
-       first newborns at a thin surge front went through the wall of cases/dambreak2d (vres-run(1)) */
-    C->flux = !fx || !*fx || !strcmp(fx, "interp") ? VRES_FLUX_INTERP
-              : !strcmp(fx, "balanced")             ? VRES_FLUX_BALANCED
-              : !strcmp(fx, "crossing")             ? VRES_FLUX_CROSSING
-                                                    : -1;
+    /* the flux: --vres-flux, else VRES_FLUX in the environment, else the restarted run's, else
+       the default (vres_couple_flux_parse) */
+    const char *fx = flux && *flux ? flux : getenv("VRES_FLUX");
+    C->flux = fx && *fx ? vres_couple_flux_parse(fx)
+              : restarted ? (int)vres_params_get(&s->params, "run_vres_flux", VRES_FLUX_DEFAULT)
+                          : VRES_FLUX_DEFAULT;
     if (C->flux < 0) {
-        vres_error("VRES_FLUX=%s: expected balanced, interp or crossing", fx);
+        vres_error(flux && *flux ? "--vres-flux %s: must be capped, interp, balanced or crossing"
+                                 : "VRES_FLUX=%s: must be capped, interp, balanced or crossing", fx);
         vres_couple_close(C);
         return NULL;
     }
@@ -263,19 +274,24 @@ static int may_create(const couple_dom *cd, size_t j, double m)
     return cd->mass[j] >= m && cd->state[j] != VRES_SEG_WAIT;
 }
 
-/* BALANCED: after a segment update, what domain k's segments fed by each donor hold is kept to
- * what the donor's particles brought across them. Each segment keeps both, accumulated by the
- * same rule (kernels/couple.h): mass, from the interpolated flux (which says where and when
- * particles are created), and crossed, from the crossing count (which is exact: what crossed is
- * the donor's particles' own mass, a free surface's and a thin front's included). Their
- * difference over the donor's segments, E = sum (crossed - mass), is added to the segments with
- * inflow in proportion to this update's increments dm, at most doubling or cancelling them,
- * so creation keeps the interpolated flux's smooth pattern while its total follows the crossing
- * count. Without the balance (VRES_FLUX=interp) the interpolated flux created 1.9% more mass
- * in cases/dambreak2d's box than crossed into it (root dp 0.01 m, overlappingh 2, to t = 1 s);
- * creating from the crossing count alone (VRES_FLUX=crossing) makes particles in the thin front
- * that clump and blew that run up at t = 0.46 s (vres-run(1)). */
-static void balance(couple_dom *cd, int ndom)
+/* CAPPED and BALANCED: after a segment update, what domain k's segments fed by each donor hold
+ * is kept to what the donor's particles brought across them. Each segment keeps both,
+ * accumulated by the same rule (kernels/couple.h): mass, from the interpolated flux (which says
+ * where and when particles are created), and crossed, from the crossing count (which is exact:
+ * what crossed is the donor's particles' own mass, a free surface's and a thin front's
+ * included). Their difference over the donor's segments, E = sum (crossed - mass), is added to
+ * the segments with inflow in proportion to this update's increments dm, at most cancelling
+ * them, and (BALANCED only) at most doubling them where E > 0; CAPPED never adds (capped 1), so
+ * E > 0 stays as credit for a later excess: creation keeps the interpolated flux's smooth
+ * pattern and never exceeds, over the run, what crossed. Measured (root dp, one thread, to 1 s
+ * unless said): the interpolated flux alone (VRES_FLUX=interp) drifted +1.16% on DualSPHysics'
+ * 2D mDBC dam break with a box at its downstream wall (dp 0.02 m, overlappingh 2) and +3.41% on
+ * cases/dambreak_vres3d (0.8 s; its box made 18% too much water in the root's DBC gap), where
+ * CAPPED drifts -0.24% and -0.33%; BALANCED conserves as well but adds mass to the segments of
+ * a thin surge front, whose first newborns clumped and stopped cases/dambreak2d (dp 0.01 m, no
+ * overlap) at 0.48 s, which CAPPED runs to 1 s (drift -0.31%); creating from the crossing count
+ * alone (VRES_FLUX=crossing) makes particles in the thin front that clump (vres-run(1)). */
+static void balance(couple_dom *cd, int ndom, int capped)
 {
     for (int j = 0; j < ndom; j++) {
         double e = 0, inflow = 0;
@@ -289,7 +305,7 @@ static void balance(couple_dom *cd, int ndom)
             if (cd->dm[s] > 0) inflow += cd->dm[s];
         }
         if (!any || !(inflow > 0)) continue;
-        const double corr = fmax(-inflow, fmin(inflow, e));
+        const double corr = fmax(-inflow, fmin(capped ? 0.0 : inflow, e));
         for (size_t s = 0; s < cd->nseg; s++)
             if (cd->donor[s] == j && cd->dm[s] > 0) cd->mass[s] += corr * cd->dm[s] / inflow;
     }
@@ -421,7 +437,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
         vres_segments S = {cd->pos,  cd->normal, cd->area, cd->donor, cd->vbox, cd->mass,
                            cd->rho,  cd->vel,    cd->state, C->flux,  cd->dm,   cd->cross};
         set->b[k].couple_segments(&set->b[k], C->donors, &S, cd->nseg, set->dom[k].dp, dt);
-        if (C->flux == VRES_FLUX_BALANCED) balance(cd, C->ndom);
+        if (C->flux == VRES_FLUX_BALANCED || C->flux == VRES_FLUX_CAPPED) balance(cd, C->ndom, C->flux == VRES_FLUX_CAPPED);
     }
     C->part.flux += vres_run_wall_now() - tf;
     if (classify_domains(C, set, 1) != 0 || sort_domains(C, set, 0) != 0 || buffers(C, set, 1) != 0) return -1;
@@ -486,6 +502,7 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
     vres_params_set1(&s->params, "run_mass0", C->mass0, "kg", "run");
     vres_params_set1(&s->params, "run_next_id", (double)C->next_id, "", "run");
     vres_params_set1(&s->params, "run_vres_order", C->order, "", "run");
+    vres_params_set1(&s->params, "run_vres_flux", C->flux, "", "run");
     s->next_id = C->next_id;
 }
 

@@ -9,13 +9,14 @@
 #include "cli.h"
 #include "log.h"
 #include "solver.h"
+#include "solver_couple.h"
 #include "store.h"
 
 static const char synopsis[] =
     "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
-    "         [--vres-order 1|2|auto] STORE -o RUNDIR\n"
+    "         [--vres-order 1|2|auto] [--vres-flux capped|interp|balanced|crossing] STORE -o RUNDIR\n"
     "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
-    "         [--vres-order 1|2|auto] --restart SNAP [-o RUNDIR]\n";
+    "         [--vres-order 1|2|auto] [--vres-flux capped|interp|balanced|crossing] --restart SNAP [-o RUNDIR]\n";
 
 static const vres_opt options[] = {
     {"tmax", 0, VRES_ARG_POSDOUBLE, 0},       /* end time (s) instead of the store's TimeMax */
@@ -25,6 +26,7 @@ static const vres_opt options[] = {
     {"checkpoint", 0, VRES_ARG_DOUBLE, 0},    /* wall seconds between checkpoint.h5 writes (0: end and signals only) */
     {"restart", 0, VRES_ARG_STR, 0},          /* snapshot or checkpoint of a run to continue */
     {"vres-order", 0, VRES_ARG_STR, 0},       /* order of the coupling's buffer interpolation: 1, 2 or auto */
+    {"vres-flux", 0, VRES_ARG_STR, 0},        /* how interface segments measure mass: capped, interp, balanced, crossing */
     {NULL, 0, VRES_ARG_NONE, 0},
 };
 
@@ -48,6 +50,12 @@ static void check_usage(const vres_cli *cli)
     const char *ord = vres_cli_get(cli, "vres-order");
     if (ord && strcmp(ord, "1") && strcmp(ord, "2") && strcmp(ord, "auto"))
         vres_error("--vres-order %s: must be 1, 2 or auto", ord), bad = 1;
+    const char *fx = vres_cli_get(cli, "vres-flux");
+    if (fx && vres_couple_flux_parse(fx) < 0)
+        vres_error("--vres-flux %s: must be capped, interp, balanced or crossing", fx), bad = 1;
+    const char *ex = getenv("VRES_FLUX");
+    if (!fx && ex && *ex && vres_couple_flux_parse(ex) < 0)
+        vres_error("VRES_FLUX=%s (environment): must be capped, interp, balanced or crossing", ex), bad = 1;
     if (bad) {
         vres_error("Try '%s --help'.", cli->tool);
         exit(2);
@@ -67,7 +75,7 @@ int main(int argc, char **argv)
                        vres_cli_get(&cli, "threads") ? atoi(vres_cli_get(&cli, "threads")) : 0,
                        cli.output ? cli.output : dirname(snapdir), /* a restart continues in the snapshot's directory */
                        cli.cmdline, restart != NULL, vres_cli_double(&cli, "checkpoint", 300),
-                       vres_cli_get(&cli, "vres-order")};
+                       vres_cli_get(&cli, "vres-order"), vres_cli_get(&cli, "vres-flux")};
     vres_store *s = vres_store_read(restart ? restart : cli.pos[0]);
     int rc = s ? vres_solver_run(s, &o) : VRES_RUN_FAIL;
     vres_store_free(s);

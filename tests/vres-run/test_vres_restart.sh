@@ -17,6 +17,24 @@ tilted_tank
 expect 0 "uninterrupted coupled run to 0.1 s, 5 outputs" "$RUN" -q --tmax 0.1 --tout 0.02 "$T/parts.h5" -o "$T/a"
 check "snapshots 0 to 5 written" [ -f "$T/a/snap_00005.h5" -a ! -e "$T/a/snap_00006.h5" ]
 
+# The default segment flux (capped, vres-run(1)) never creates more than the donor's particles
+# carried across: on every interface of every snapshot the crossing count left after creations
+# (Crossed) is at least the interpolated mass left (Mass); and the count is not all zero.
+# sum_ds FILE DATASET: the sum of a dataset's values, at full precision
+sum_ds() { h5dump -m '%.17g' -y -w 0 -d "$2" "$1" | sed -n '/DATA {/,/}/p' | tr -c '0-9eE.+\n-' ' ' |
+    awk '{for (i = 1; i <= NF; i++) s += $i} END {printf "%.17g\n", s}'; }
+capped_bad= capped_any=0
+for k in 1 2 3 4 5; do
+    f=$T/a/$(printf 'snap_%05d.h5' $k)
+    for i in $(h5ls "$f/Interfaces" | awk '{print $1}'); do
+        cr=$(sum_ds "$f" "/Interfaces/$i/Crossed") ms=$(sum_ds "$f" "/Interfaces/$i/Mass")
+        awk -v c="$cr" -v m="$ms" 'BEGIN {exit !(c != 0)}' && capped_any=1
+        awk -v c="$cr" -v m="$ms" 'BEGIN {exit !(c >= m - 1e-9)}' || capped_bad="$capped_bad snap $k $i: Crossed $cr < Mass $ms;"
+    done
+done
+check "the crossing count is kept in the snapshots (not all zero)" [ "$capped_any" = 1 ]
+check "capped flux: Crossed >= Mass on every interface of snapshots 1-5${capped_bad:+ ($capped_bad)}" [ -z "$capped_bad" ]
+
 # ledger.tsv column COL (1-based, ledger.tsv's header) summed over domains on the lines of step
 # STEP, from run directory DIR
 ledger_sum() { awk -F'\t' -v c="$3" -v s="$2" '!/^#/ && $2 == s {n += $c} END {print n + 0}' "$1/ledger.tsv"; }
@@ -33,7 +51,7 @@ done
 
 # same_snaps A B K[:L]...: snapshot K of run directory A and snapshot L (default K) of B hold
 # the same datasets, bit for bit (h5diff without a tolerance compares exactly): every dataset
-# of every domain and the mass of every interface, listed from A's snapshot with h5ls.
+# of every domain and the mass and crossing count of every interface, listed from A's snapshot with h5ls.
 same_snaps() {
     local a=$1 b=$2 k fa fb d ds i bad; shift 2
     for k in "$@"; do
@@ -45,7 +63,9 @@ same_snaps() {
             done
         done
         for i in $(h5ls "$fa/Interfaces" | awk '{print $1}'); do
-            h5diff -q "$fa" "$fb" "/Interfaces/$i/Mass" "/Interfaces/$i/Mass" >/dev/null || bad="$bad $i/Mass"
+            for ds in Mass Crossed; do
+                h5diff -q "$fa" "$fb" "/Interfaces/$i/$ds" "/Interfaces/$i/$ds" >/dev/null || bad="$bad $i/$ds"
+            done
         done
         if [ -z "$bad" ] && [ -n "$(h5ls "$fa/Interfaces")" ]; then ok "${fb#$T/}: every domain and interface equal"
         else notok "${fb#$T/}: differs from ${fa#$T/} in$bad"; fi
@@ -105,3 +125,17 @@ check "the first-order run differs from the default (auto) run at 0.04 s" \
 expect_err 2 "--vres-order 3: must be 1, 2 or auto" "--vres-order 3 refused (exit 2) with its message" \
     "$RUN" --vres-order 3 "$T/parts.h5" -o "$T/o3"
 check "nothing written for it" [ ! -e "$T/o3" ]
+
+# ---- the segments' flux (--vres-flux): kept in the snapshots (run_vres_flux, kernels/couple.h's
+# code: balanced 0), and a restart without the option (nor VRES_FLUX) continues with the run's
+# flux, bit for bit; the flux changes the flow once the tilted water creates particles
+expect 0 "coupled run with --vres-flux balanced to 0.06 s" env -u VRES_FLUX "$RUN" -q --vres-flux balanced --tmax 0.06 --tout 0.02 "$T/parts.h5" -o "$T/fb"
+v=$(h5dump -a /Parameters/run_vres_flux "$T/fb/snap_00002.h5" | sed -n 's/^ *(0): //p')
+check "snap_00002.h5 records run_vres_flux 0, balanced ($v)" [ "$v" = 0 ]
+expect 0 "restart from its snap_00001.h5 without --vres-flux" env -u VRES_FLUX "$RUN" -q --restart "$T/fb/snap_00001.h5" -o "$T/fbr"
+same_snaps "$T/fb" "$T/fbr" 2 3
+check "the balanced run differs from the default run at 0.06 s" \
+    sh -c "! h5diff -q '$T/a/snap_00003.h5' '$T/fb/snap_00003.h5' /Interfaces/I0/Mass /Interfaces/I0/Mass >/dev/null"
+expect_err 2 "--vres-flux both: must be capped, interp, balanced or crossing" "--vres-flux both refused (exit 2) with its message" \
+    "$RUN" --vres-flux both "$T/parts.h5" -o "$T/fx"
+check "nothing written for it" [ ! -e "$T/fx" ]
