@@ -390,6 +390,32 @@ VRES_PARTICLE_LOOP(vres_couple_buffer_loop, vres_couple_buffer_one,
                    (reg, nreg, k, dim, donors, pos, type, vel, rho, event))
 
 
+/* Buffer particle i of domain k keeps of its shifting sums (shiftv[4i..4i+2], grad C,
+ * vres_sph_shift_sums) only what runs along its band: on each axis on which it lies outside the
+ * box its band surrounds (its domain's fluid box where its parent feeds it, the child's inner
+ * box where a child does) the component is zeroed, so that shifting spreads the band's particles
+ * along the interface and never moves them across it (DualSPHysics 5.4's BufferShiftingCpu).
+ * A cancelled shifting (NaN) and other particles are left alone. */
+VRES_HD static inline void vres_couple_shift_one(size_t i, const vres_region *reg, int nreg, int k, int dim,
+                                                 const double *pos, const uint8_t *type, double *shiftv)
+{
+    double *s = &shiftv[4 * i];
+    if (!vres_type_is_buffer(type[i]) || s[0] != s[0]) return;
+    int j;
+    const double *x = &pos[3 * i];
+    if (vres_region_classify(reg, nreg, k, x, dim, &j) != VRES_REGION_BUFFER || j < 0) return;
+    const double *lo = j == reg[k].parent ? reg[k].fluid_lo : reg[j].inner_lo;
+    const double *hi = j == reg[k].parent ? reg[k].fluid_hi : reg[j].inner_hi;
+    for (int a = 0; a < 3; a++)
+        if (!(dim == 2 && a == 1) && (x[a] < lo[a] || x[a] > hi[a])) s[a] = 0.0;
+}
+
+/* vres_couple_shift_loop_cpu / _cuda (n, reg, nreg, k, dim, pos, type, shiftv). */
+VRES_PARTICLE_LOOP(vres_couple_shift_loop, vres_couple_shift_one,
+                   (const vres_region *reg, int nreg, int k, int dim, const double *pos, const uint8_t *type,
+                    double *shiftv),
+                   (reg, nreg, k, dim, pos, type, shiftv))
+
 /* Classify particle i of domain k (reg: the nreg domains' regions) at its position: fluid and
  * buffer particles take the type of their region, event[i] says what changed (VRES_EV_*); a
  * particle outside what the domain keeps is marked for deletion (event DEL_*). Walls and other

@@ -164,6 +164,44 @@ VRES_HD static inline void vres_sph_no_rates(size_t a, double *ace, double *ar, 
     if (shift) shiftv[4 * a] = shiftv[4 * a + 1] = shiftv[4 * a + 2] = shiftv[4 * a + 3] = 0.0;
 }
 
+/* The shifting sums of buffer particle a, whose rates the interaction does not compute: grad C
+ * and div r over its neighbours in the ranges nb[0..m), the very sums vres_sph_interact makes for
+ * a fluid particle, into shiftv[4a..4a+3] (NaN in shiftv[4a] when a wall neighbour cancels its
+ * shifting, C->shift_mode 1 or 2), so that buffer particles are shifted as fluid is, less the
+ * component normal to their band (vres_couple_shift_one): DualSPHysics 5.4 shifts them so
+ * (BufferShiftingCpu), which keeps the band's particles spread while they are advected by the
+ * interpolated velocity. Positions: x[b stride], z[b stride], and y[b stride] unless y is NULL
+ * (2D); walls 1 when the domain has wall particles. */
+VRES_HD static inline void vres_sph_shift_sums(size_t a, const vres_cell_range *nb, int m, const double *x,
+                                               const double *y, const double *z, size_t stride, const float *rho,
+                                               const double *mass, const uint8_t *type, const vres_sph_consts *C,
+                                               const int walls, double *shiftv)
+{
+    const double xa = x[a * stride], ya = y ? y[a * stride] : 0.0, za = z[a * stride];
+    double gc[3] = {0, 0, 0}, divr = 0;
+    int noshift = 0;
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            const double dx[3] = {xa - (x[b * stride] + nb[c].shift[0]), y ? ya - (y[b * stride] + nb[c].shift[1]) : 0.0,
+                                  za - (z[b * stride] + nb[c].shift[2])};
+            const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+            if (r2 >= C->fourh2 || r2 < 1e-18 * C->fourh2) continue; /* outside the support, or a itself */
+            /* the operations of vres_sph_interact's (and the 2D loop's) shifting terms, so that
+               the sums are those of a fluid particle at a to the bit */
+            const double F = vres_wendland_f(C->k, sqrt(r2)), vol = mass[b] * (1.0 / (double)rho[b]);
+            const double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
+            if (walls && !vres_type_acts_fluid(type[b]) &&
+                (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(type[b]))))
+                noshift = 1;
+            for (int k = 0; k < 3; k++) gc[k] += vol * fr[k];
+            divr -= y ? vol * (dx[0] * fr[0] + dx[1] * fr[1] + dx[2] * fr[2]) : vol * (dx[0] * fr[0] + dx[2] * fr[2]);
+        }
+    shiftv[4 * a] = noshift ? NAN : gc[0];
+    shiftv[4 * a + 1] = gc[1];
+    shiftv[4 * a + 2] = gc[2];
+    shiftv[4 * a + 3] = divr;
+}
+
 /* The interaction of particle a with its neighbours in the cells g: for a fluid particle the
  * acceleration ace[3a] (m/s^2, gravity included), density rate ar[a] (kg/m^3/s) and the
  * largest viscous rate visc[a] (1/s); for a wall particle (DBC) ar[a] from its fluid (and
@@ -184,6 +222,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
 {
     if (vres_type_is_buffer(type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
+        if (shift) {
+            vres_cell_range bnb[27];
+            const int bm = vres_cells_neighbours(g, &pos[3 * a], bnb);
+            vres_sph_shift_sums(a, bnb, bm, pos, pos + 1, pos + 2, 3, rho, mass, type, &C, walls, shiftv);
+        }
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(type[a]);
@@ -481,6 +524,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
 {
     if (vres_type_is_buffer(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
+        if (shift) vres_sph_shift_sums(a, nb, m, P->x, NULL, P->z, 1, P->rho, P->mass, P->type, C, walls, shiftv);
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);
@@ -751,7 +795,7 @@ VRES_PARTICLE_LOOP(vres_sph_general, vres_sph_general_one,
                     double *visc, double *shiftv, int ddt, int walls, int viscosity, int shift),
                    (g, pos, vel, rho, press, mass, type, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift))
 
-/* The shifting displacement (m) of fluid particle i for a step dt (s) at speed |v_i|, into
+/* The shifting displacement (m) of fluid or buffer particle i for a step dt (s) at speed |v_i|, into
  * shiftv[4i..4i+2] (DualSPHysics' JSphShifting): dr = A h |v| dt grad C, A = ShiftCoef
  * (negative: towards lower concentration), scaled by (div r - TFS)/(dim - TFS) when TFS > 0
  * and zero where div r < TFS (the free surface), each component kept within 0.1 dp; zero
@@ -760,7 +804,7 @@ VRES_HD static inline void vres_shift_one(size_t i, const uint8_t *type, const f
                                           double coef_h, double tfs, int dim, double maxdist)
 {
     double *s = &shiftv[4 * i];
-    if (!vres_type_is_fluid(type[i]) || s[0] != s[0]) { /* walls and buffers; NaN: cancelled */
+    if (!vres_type_acts_fluid(type[i]) || s[0] != s[0]) { /* walls; NaN: cancelled */
         s[0] = s[1] = s[2] = 0;
         return;
     }

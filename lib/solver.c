@@ -147,6 +147,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
        neighbour sees them; the corrector decides (they are excluded after the step) */
     if (sort_all(set, c, 1, t + 0.5 * dt) != 0) return VRES_RUN_FAIL;
     forces_all(set, c, c->shift != 0, &kmin, &amax, &visc);
+    if (c->shift && vres_couple_shift(set) != 0) return VRES_RUN_FAIL;
     for (k = 0; k < set->n; k++) set->b[k].correct(&set->b[k], dt, c->shift != 0);
     wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);

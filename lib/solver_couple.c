@@ -387,6 +387,17 @@ int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
     return rc;
 }
 
+int vres_couple_shift(run_set *set)
+{
+    vres_couple *C = set->couple;
+    if (!C) return uncoupled(set);
+    double t0 = vres_run_wall_now();
+    for (int k = 0; k < C->ndom; k++) set->b[k].couple_shift(&set->b[k], C->reg, C->ndom, k);
+    C->part.interp += vres_run_wall_now() - t0;
+    C->wall += vres_run_wall_now() - t0;
+    return 0;
+}
+
 /* Sort every domain by cell (with carry, the step's start follows: the crossing flux reads it).
  * 0 or -1. */
 static int sort_domains(vres_couple *C, run_set *set, int carry)

@@ -1,7 +1,7 @@
 /* solver_couple.h - the variable-resolution coupling of a run's domains (solver_couple.c): its
- * state, the start of a new run, and the ledger. The two calls the step sequence makes every
- * step, vres_couple_buffers and vres_couple_exchange, are declared in solver_run.h. Internal
- * to libvres. */
+ * state, the start of a new run, and the ledger. The calls the step sequence makes every step,
+ * vres_couple_buffers, vres_couple_shift (with shifting) and vres_couple_exchange, are declared
+ * in solver_run.h. Internal to libvres. */
 #ifndef VRES_SOLVER_COUPLE_H
 #define VRES_SOLVER_COUPLE_H
 

@@ -447,6 +447,13 @@ static void cpu_couple_buffers(vres_backend *b, const vres_region *reg, int nreg
     cpu_count_events(x, n_ev, m_ev);
 }
 
+/* Buffer particles' shifting sums kept along their bands (only with shifting sums). */
+static void cpu_couple_shift(vres_backend *b, const vres_region *reg, int nreg, int k)
+{
+    cpu_ctx *x = ctx_of(b);
+    if (x->shiftv) vres_couple_shift_loop_cpu(x->d->n, reg, nreg, k, x->c.dim, x->d->pos, x->d->type, x->shiftv);
+}
+
 /* Segment fluxes from the donors, with this domain's walls for the wall gate. */
 static void cpu_couple_segments(vres_backend *b, const vres_donor *donors, const vres_segments *S, size_t nseg,
                                 double dp, double dt)
@@ -505,6 +512,7 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     b->couple_classify = cpu_couple_classify;
     b->couple_buffers = cpu_couple_buffers;
     b->couple_segments = cpu_couple_segments;
+    b->couple_shift = cpu_couple_shift;
     b->close = cpu_close;
     return 0;
 }

@@ -173,6 +173,9 @@ typedef struct vres_backend {
      * those without support keep theirs, are counted (VRES_EV_NOSUPPORT) and marked. */
     void (*couple_buffers)(struct vres_backend *b, const vres_region *reg, int nreg, int k, const vres_donor *donors,
                            size_t *n_ev, double *m_ev);
+    /* After forces with shifting sums: every buffer particle's sums lose their components
+     * normal to its band (vres_couple_shift_one), so the corrector shifts it along the band. */
+    void (*couple_shift)(struct vres_backend *b, const vres_region *reg, int nreg, int k);
     /* Update the segments S (host arrays of nseg) from the donors over dt (s), with this
      * domain's walls (cells current) for the wall gate; dp is this domain's spacing (m). */
     void (*couple_segments)(struct vres_backend *b, const vres_donor *donors, const vres_segments *S, size_t nseg,

@@ -71,6 +71,11 @@ char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu);
  * walls). Does nothing with one domain. 0, or -1 after printing why. */
 int vres_couple_buffers(run_set *set, const run_cfg *c, double t);
 
+/* After the corrector's forces with shifting sums: each domain's buffer particles keep only the
+ * sums' components along their bands, so that shifting spreads them along the interface and
+ * never across it. Does nothing with one domain. 0, or -1 after printing why. */
+int vres_couple_shift(run_set *set);
+
 /* After the corrector (or the Verlet step) of every domain, the walls placed, the step ending
  * at t after dt (s): buffer particles that entered the fluid region become fluid and fluid
  * that entered a buffer becomes buffer, the mass flux through each buffer's outer edge

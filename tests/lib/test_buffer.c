@@ -10,12 +10,15 @@
  *   - Over a Symplectic step and a Verlet step of the CPU backend (the time loop's sequence of
  *     backend operations) the buffer particle keeps its velocity and density bit for bit and
  *     moves by v dt; after the predictor (whose forces come from the same state) every other
- *     particle is where it is when the buffer particle is fluid. */
+ *     particle is where it is when the buffer particle is fluid.
+ *   - With shifting, the buffer particle's shifting sums are those it has as fluid; the
+ *     coupling then removes their components normal to its band. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "../kernels/couple.h"
 #include "../kernels/eos.h"
 #include "../kernels/sph.h"
 #include "cells.h"
@@ -103,6 +106,19 @@ static vres_store *block(int jtype, uint64_t *jid)
     return s;
 }
 
+/* block(jtype, jid) sorted by a cell list *g of cell size 2h (dc's box), its pressures from
+ * c's equation of state. */
+static vres_store *sorted_block(int jtype, uint64_t *jid, const run_cfg *c, const run_dom *dc, vres_cells *g)
+{
+    vres_store *s = block(jtype, jid);
+    vres_domain *d = &s->dom[0];
+    ck_assert_int_eq(vres_cells_init(g, 2, 2 * dc->h, dc->box_lo, dc->box_hi, NULL), 0);
+    vres_cells_build(g, d->pos, d->n);
+    ck_assert_int_eq(vres_cells_reorder(g, d), 0);
+    vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
+    return s;
+}
+
 /* The slot of the particle with id `id` in d. */
 static size_t slot_of(const vres_domain *d, uint64_t id)
 {
@@ -151,14 +167,7 @@ START_TEST(interaction_feels_buffer_as_fluid)
     const run_cfg c = config();
     const run_dom dc = domain(0, 0);
     const vres_sph_consts C = vres_run_consts(&c, &dc);
-    for (int t = 0; t < 3; t++) {
-        s[t] = block(types[t], &jid);
-        vres_domain *d = &s[t]->dom[0];
-        ck_assert_int_eq(vres_cells_init(&g[t], 2, 2 * dc.h, dc.box_lo, dc.box_hi, NULL), 0);
-        vres_cells_build(&g[t], d->pos, d->n);
-        ck_assert_int_eq(vres_cells_reorder(&g[t], d), 0);
-        vres_eos_loop_cpu(d->n, d->rho, d->press, c.rho0, c.B, c.gamma);
-    }
+    for (int t = 0; t < 3; t++) s[t] = sorted_block(types[t], &jid, &c, &dc, &g[t]);
     const vres_domain *d = &s[0]->dom[0];
     size_t n = d->n, j = slot_of(d, jid);
     for (int k = 0; k < 4; k++) {
@@ -184,6 +193,101 @@ START_TEST(interaction_feels_buffer_as_fluid)
         for (int t = 0; t < 3; t++) free(r[t].ace), free(r[t].ar), free(r[t].visc);
     }
     for (int t = 0; t < 3; t++) vres_cells_free(&g[t]), vres_store_free(s[t]);
+}
+END_TEST
+
+/* With shifting (every variant that sums grad C and div r: 3D, 2D, general loops), the buffer
+ * particle gets the very shifting sums (bit for bit) it gets as fluid, and every other particle
+ * the sums it gets beside fluid, while its rates stay discarded: buffers are shifted like fluid
+ * (vres_sph_shift_sums), less the component normal to their band (vres_couple_shift_one, below). */
+START_TEST(buffer_gets_fluid_shifting_sums)
+{
+    static const int types[2] = {VRES_BUFFER, VRES_FLUID};
+    vres_store *s[2];
+    vres_cells g[2];
+    uint64_t jid = 0;
+    const run_cfg c = config();
+    const run_dom dc = domain(0, 0);
+    vres_sph_consts C = vres_run_consts(&c, &dc);
+    for (int t = 0; t < 2; t++) s[t] = sorted_block(types[t], &jid, &c, &dc, &g[t]);
+    const size_t n = s[0]->dom[0].n, j = slot_of(&s[0]->dom[0], jid);
+    for (int mode = 1; mode <= 3; mode += 2) { /* 1: a wall neighbour cancels (NaN), 3: walls count */
+        C.shift_mode = mode;
+        for (int k = 0; k < 3; k++) {
+            double *sv[2], *ace[2], *ar[2], *vi[2];
+            for (int t = 0; t < 2; t++) {
+                vres_domain *d = &s[t]->dom[0];
+                sv[t] = calloc(4 * n, sizeof(double)), ace[t] = calloc(3 * n, sizeof(double));
+                ar[t] = calloc(n, sizeof(double)), vi[t] = calloc(n, sizeof(double));
+                double *x = malloc(2 * n * sizeof *x), *ir = malloc(n * sizeof *ir);
+                float *v = malloc(2 * n * sizeof *v);
+                for (size_t i = 0; i < n; i++)
+                    x[i] = d->pos[3 * i], x[n + i] = d->pos[3 * i + 2], v[i] = d->vel[3 * i],
+                    v[n + i] = d->vel[3 * i + 2], ir[i] = 1.0 / d->rho[i];
+                vres_sph_2d P = {x, x + n, v, v + n, d->rho, d->press, ir, d->mass_p, d->type};
+                if (k == 0)
+                    vres_sph_shift_dbc_molteni_cpu(n, &g[t], d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, C,
+                                                   ace[t], ar[t], vi[t], sv[t]);
+                else if (k == 1)
+                    vres_sph2d_shift_dbc_molteni_cpu(g[t].ncells + 1, &g[t], &P, &C, ace[t], ar[t], vi[t], sv[t]);
+                else
+                    vres_sph_general_cpu(n, &g[t], d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, C, ace[t],
+                                         ar[t], vi[t], sv[t], VRES_DDT_MOLTENI, 1, VRES_VISC_ARTIFICIAL, 1);
+                free(x), free(ir), free(v);
+            }
+            /* the buffer particle, in the bottom row next to the walls: mode 1 cancels (NaN) */
+            ck_assert_msg(mode == 1 ? isnan(sv[0][4 * j]) && isnan(sv[1][4 * j]) : sv[0][4 * j] == sv[1][4 * j],
+                          "loop %d mode %d: %g against %g", k, mode, sv[0][4 * j], sv[1][4 * j]);
+            for (int q = 1; q < 4; q++) ck_assert(sv[0][4 * j + q] == sv[1][4 * j + q]);
+            ck_assert(sv[0][4 * j + 3] > 0.5); /* div r: a real sum, so the equality means something */
+            ck_assert(ar[0][j] == 0 && ace[0][3 * j + 2] == 0 && ar[1][j] != 0);
+            for (size_t i = 0; i < n; i++) {
+                if (s[0]->dom[0].type[i] != VRES_FLUID) continue;
+                for (int q = 0; q < 4; q++)
+                    ck_assert((isnan(sv[0][4 * i + q]) && isnan(sv[1][4 * i + q])) || sv[0][4 * i + q] == sv[1][4 * i + q]);
+            }
+            for (int t = 0; t < 2; t++) free(sv[t]), free(ace[t]), free(ar[t]), free(vi[t]);
+        }
+    }
+    for (int t = 0; t < 2; t++) vres_cells_free(&g[t]), vres_store_free(s[t]);
+}
+END_TEST
+
+/* vres_couple_shift_one keeps a buffer particle's shifting sums along its band only: in a
+ * child (domain 1, fluid box [0.4, 0.6]^2 in x-z, its band fed by the root) the components on
+ * the axes where the particle lies outside the fluid box are zeroed; in the root's band inside
+ * the child's hole (fed by the child) those on the axes where it lies outside the child's inner
+ * box; fluid particles, a cancelled (NaN) shifting and y in 2D are left alone. */
+START_TEST(buffer_shifting_loses_its_normal_component)
+{
+    vres_region reg[2];
+    memset(reg, 0, sizeof reg);
+    for (int a = 0; a < 3; a++) {
+        reg[0].parent = -1;
+        reg[0].fluid_lo[a] = -1, reg[0].fluid_hi[a] = 2;
+        reg[1].parent = 0;
+        reg[1].fluid_lo[a] = 0.4, reg[1].fluid_hi[a] = 0.6;
+        reg[1].buff_lo[a] = 0.34, reg[1].buff_hi[a] = 0.66;
+        reg[1].hole_lo[a] = 0.42, reg[1].hole_hi[a] = 0.58;
+        reg[1].inner_lo[a] = 0.48, reg[1].inner_hi[a] = 0.52;
+    }
+    /* domain 1: left of the box (x band), below-left corner (both), inside (fluid: untouched) */
+    const double p1[4][3] = {{0.37, 0, 0.5}, {0.37, 0, 0.37}, {0.5, 0, 0.5}, {0.37, 0, 0.5}};
+    const uint8_t t1[4] = {VRES_BUFFER, VRES_BUFFER, VRES_FLUID, VRES_BUFFER};
+    double sv[16];
+    for (int i = 0; i < 16; i++) sv[i] = 1.0 + i;
+    sv[12] = NAN; /* the fourth: cancelled */
+    vres_couple_shift_loop_cpu(4, reg, 2, 1, 2, &p1[0][0], t1, sv);
+    ck_assert(sv[0] == 0 && sv[1] == 2 && sv[2] == 3 && sv[3] == 4);  /* x zeroed, y (2D) and z kept */
+    ck_assert(sv[4] == 0 && sv[5] == 6 && sv[6] == 0 && sv[7] == 8);  /* x and z zeroed */
+    ck_assert(sv[8] == 9 && sv[9] == 10 && sv[10] == 11);             /* fluid: untouched */
+    ck_assert(isnan(sv[12]) && sv[14] == 15);                         /* cancelled: untouched */
+    /* domain 0 (the root): its band inside the child's hole, above the inner box (z band) */
+    const double p0[3] = {0.5, 0, 0.55};
+    const uint8_t t0[1] = {VRES_BUFFER};
+    double s0[4] = {1, 2, 3, 4};
+    vres_couple_shift_loop_cpu(1, reg, 2, 0, 2, p0, t0, s0);
+    ck_assert(s0[0] == 1 && s0[1] == 2 && s0[2] == 0 && s0[3] == 4);
 }
 END_TEST
 
@@ -280,6 +384,8 @@ int main(void)
     TCase *tc = tcase_create("buffer");
     tcase_add_test(tc, interaction_feels_buffer_as_fluid);
     tcase_add_test(tc, buffer_is_advected_over_a_step);
+    tcase_add_test(tc, buffer_gets_fluid_shifting_sums);
+    tcase_add_test(tc, buffer_shifting_loses_its_normal_component);
     tcase_add_test(tc, fluid_moves_as_next_to_fluid);
     suite_add_tcase(s, tc);
     return vres_check_run(s);
