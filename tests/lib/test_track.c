@@ -2,7 +2,8 @@
  * kernels/region.h's track): the frame mapping (world -> box frame -> world is the identity,
  * 2D about y and 3D about an oblique axis), the classification of points of a moved box (the
  * moved box's fluid, band and the parent's hole and inner box where the motion has them, the
- * place the box left given back to the parent), the segments' normals and rigid velocity
+ * place the box left given back to the parent), a buffer's shifting less the normal of its turned
+ * band, the segments' normals and rigid velocity
  * (against a finite difference of their positions), the box's place from a body's prescribed
  * motion (the closed form), the ownership of points by a moved box (lib/owner.c), the store
  * round trip of the motion and the refusal of a corrupt one, and vres_partition of
@@ -24,6 +25,7 @@
 #include "solver_motion.h"
 #include "store.h"
 #include "track.h"
+#include "../kernels/couple.h"
 #include "check_run.h"
 
 #define NEAR(a, b, tol) ck_assert_msg(fabs((double)(a) - (double)(b)) <= (tol), "%s = %.17g, expected %.17g", #a, \
@@ -433,6 +435,43 @@ START_TEST(turning_3d)
 }
 END_TEST
 
+START_TEST(shift_band)
+{
+    /* a buffer particle's shifting loses the component normal to its band in the turned box's
+       frame: the two_regions box turned 90 degrees about its centre and moved 3 m along x; a
+       particle in the child's band beside the frame's +x face (whose normal is R e_x in the
+       world) and one in the parent's band inside the frame's -z face of the hole */
+    vres_region r[2];
+    two_regions(r);
+    vres_motion_seg seg;
+    const double p1[3] = {1.5, -1, 1.5}, p2[3] = {1.5, 1, 1.5};
+    vres_body b = rot_body(PI / 2, p1, p2, &seg);
+    vres_track_at(&r[1], &b, 1.0);
+    r[1].mot.d[0] += 3;
+    const double x0[2][3] = {{2.05, 0, 1.5}, {1.5, 0, 1.1}}; /* frame positions */
+    const int dom[2] = {1, 0}, axis[2] = {0, 2};
+    for (int c = 0; c < 2; c++) {
+        double pos[3], nrm[3];
+        const double e[3] = {axis[c] == 0, 0, axis[c] == 2};
+        vres_region_world(&r[1], x0[c], pos);
+        for (int a = 0; a < 3; a++) /* R e: the face's normal in the world */
+            nrm[a] = r[1].mot.R[3 * a] * e[0] + r[1].mot.R[3 * a + 1] * e[1] + r[1].mot.R[3 * a + 2] * e[2];
+        int donor;
+        ck_assert_int_eq(vres_region_classify(r, 2, dom[c], pos, 2, &donor), VRES_REGION_BUFFER);
+        uint8_t type = VRES_PTYPE_BUFFER;
+        double sv[4] = {0.7, 0, -0.4, 1};
+        const double dotn = sv[0] * nrm[0] + sv[2] * nrm[2];
+        ck_assert(fabs(dotn) > 0.3); /* there is a normal part to remove */
+        double want[3] = {sv[0] - dotn * nrm[0], 0, sv[2] - dotn * nrm[2]};
+        vres_couple_shift_one(0, r, 2, dom[c], 2, pos, &type, sv);
+        NEAR(sv[0], want[0], 1e-15);
+        NEAR(sv[2], want[2], 1e-15);
+        NEAR(sv[0] * nrm[0] + sv[2] * nrm[2], 0, 1e-15);
+        ck_assert(fabs(sv[0]) + fabs(sv[2]) > 0.3); /* the tangential part stays */
+    }
+}
+END_TEST
+
 START_TEST(owner_and_store)
 {
     /* the plate's partition with its box moved 0.05 m: a point of the moved box belongs to D1, the
@@ -490,6 +529,7 @@ int main(void)
     tcase_add_test(t, plate_partition);
     tcase_add_test(t, refusals);
     tcase_add_test(t, turning_3d);
+    tcase_add_test(t, shift_band);
     tcase_add_test(t, owner_and_store);
     suite_add_tcase(su, t);
     return vres_check_run(su);
