@@ -524,7 +524,7 @@ static void read_constants(cd_ctx *c, xmlNodePtr cd)
 {
     cd_consts *k = &c->k;
     consts_default(k);
-    xmlNodePtr coefh_node = NULL, hdp_node = NULL;
+    xmlNodePtr coefh_node = NULL, hdp_node = NULL, node[CK_N] = {NULL}; /* each constant's element */
     for (xmlNodePtr e = cd ? cd->children : NULL; e; e = e->next) {
         if (!cd_is_elem(e)) continue;
         int slot = const_slot(cd_name(e), 0);
@@ -533,6 +533,7 @@ static void read_constants(cd_ctx *c, xmlNodePtr cd)
             continue;
         }
         read_const(c, e, slot);
+        node[slot] = e;
         if (slot == CK_COEFH) coefh_node = e;
         if (slot == CK_HDP) hdp_node = e;
     }
@@ -542,25 +543,30 @@ static void read_constants(cd_ctx *c, xmlNodePtr cd)
     if (hdp_node && !coefh_node) k->v[CK_COEFH][0] = 0, k->origin[CK_COEFH] = "auto";
     override_consts(c);
     xmlNodePtr at = cd;
-    if (!(k->v[CK_RHOP0][0] > 0)) cd_err(c, at, "rhop0 must be greater than zero (rhop0=%g)", k->v[CK_RHOP0][0]);
-    if (!(k->v[CK_GAMMA][0] > 0)) cd_err(c, at, "gamma must be greater than zero (gamma=%g)", k->v[CK_GAMMA][0]);
+    /* a bad value is reported at its element, or at <constantsdef> when --set gave it */
+#define AT(slot) (node[slot] && strcmp(k->origin[slot], "set") ? node[slot] : at)
+    if (!(k->v[CK_RHOP0][0] > 0))
+        cd_err(c, AT(CK_RHOP0), "rhop0 must be greater than zero (rhop0=%g)", k->v[CK_RHOP0][0]);
+    if (!(k->v[CK_GAMMA][0] > 0))
+        cd_err(c, AT(CK_GAMMA), "gamma must be greater than zero (gamma=%g)", k->v[CK_GAMMA][0]);
     /* DualSPHysics JCaseCtes::SetCFLnumber: "cannot be zero", "cannot be greater than 1". */
     double cfl = k->v[CK_CFLNUMBER][0];
-    if (!(cfl > 0 && cfl <= 1)) cd_err(c, at, "cflnumber must be in (0, 1] (cflnumber=%g)", cfl);
+    if (!(cfl > 0 && cfl <= 1)) cd_err(c, AT(CK_CFLNUMBER), "cflnumber must be in (0, 1] (cflnumber=%g)", cfl);
     int rg = (int)k->v[CK_RHOPGRADIENT][0];
     if (rg != k->v[CK_RHOPGRADIENT][0] || rg < 1 || rg > 3)
-        cd_err(c, at, "rhopgradient must be 1 (rhop0), 2 (water column) or 3 (maximum water height), not %g",
+        cd_err(c, AT(CK_RHOPGRADIENT), "rhopgradient must be 1 (rhop0), 2 (water column) or 3 (maximum water height), not %g",
                k->v[CK_RHOPGRADIENT][0]);
     double ch = k->v[CK_COEFH][0], hdp = k->v[CK_HDP][0];
     if (ch == 0 && hdp == 0) cd_err(c, at, "coefh (or hdp) must be greater than zero");
     else if (ch < 0 || hdp < 0) cd_err(c, at, "coefh and hdp must be greater than zero");
     if (k->autov[CK_SPEEDSOUND] && !(k->v[CK_COEFSOUND][0] > 0))
-        cd_err(c, at, "coefsound must be greater than zero when speedsound is automatic (coefsound=%g)",
+        cd_err(c, AT(CK_COEFSOUND), "coefsound must be greater than zero when speedsound is automatic (coefsound=%g)",
                k->v[CK_COEFSOUND][0]);
     /* DualSPHysics ignores eps ("Eps value is not used (this correction is deprecated)"). */
     if (k->given[CK_EPS] && k->v[CK_EPS][0] != 0)
         cd_note(c, cd_child(cd, "eps"), "eps=%g is ignored, as DualSPHysics does (XSPH is deprecated)",
                 k->v[CK_EPS][0]);
+#undef AT
 }
 
 /* The smoothing length for spacing dp: DualSPHysics JCaseCtes::ComputeFinalH,

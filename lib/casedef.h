@@ -53,8 +53,9 @@ vres_store *vres_case_redraw(const vres_store *s, double dp, const vres_clip *cl
 int vres_case_lattice(const vres_store *s, double dp, double ref[3]);
 
 /* Pre-flight checks on a store made by vres_case_read (vres-gencase --check): buffers
- * narrower than 2h, boxes reaching outside their parent, wall particles inside a buffer band
- * without a normal, fluid outside the simulation domain, fluid closer than dp/2 to a wall.
+ * narrower than 2h, boxes reaching outside their parent, mDBC wall particles inside a buffer
+ * band without a normal, fluid outside the simulation domain, fluid closer than dp/2 to a
+ * wall, and vres_preflight's (preflight.h: what vres-run refuses at its start).
  * Prints each problem as one line; returns their count. */
 int vres_case_check(const vres_store *s);
 

@@ -1,6 +1,7 @@
 /* casedef_check.c - pre-flight checks of a case (vres-gencase --check): buffers narrower than
- * the kernel support, walls without normals where they cross a buffer band, fluid outside
- * the simulation domain and fluid drawn on top of walls. Each problem is one line. */
+ * the kernel support, mDBC walls without normals where they cross a buffer band, fluid outside
+ * the simulation domain and fluid drawn on top of walls, then what vres-run also refuses at its
+ * start (preflight.h). Each problem is one line. */
 #include "casedef_int.h"
 
 #include <libxml/parser.h>
@@ -11,6 +12,7 @@
 #include <strings.h>
 
 #include "log.h"
+#include "preflight.h"
 
 /* Line numbers of the active <bufferbox> elements of the case text, in the order the reader
  * stores the boxes (depth first, parents before children). */
@@ -101,7 +103,32 @@ static int check_box_normals(const vres_store *s, size_t k, double h0, const cha
     return 1;
 }
 
-/* Checks of each refinement box: buffer width, nesting, normals. Returns the problems found. */
+/* Room inside box k for the parent's fluid: along each axis the parent keeps a buffer band of
+ * buffsizeh h_parent (in whole parent layers) inside each face not on the simulation domain's
+ * edge, moved in by overlappingh h_child; a box whose bands leave less than one parent dp
+ * between them is refused, as vres-partition refuses it (which decides on the lattice).
+ * Returns 1 when it is so. */
+static int check_box_room(const vres_store *s, size_t k, double h0, const char *name)
+{
+    const vres_box *b = &s->box[k];
+    double hc = box_h(s, k, h0), hp = b->parent >= 0 ? box_h(s, (size_t)b->parent, h0) : h0;
+    double dpp = s->ndomains ? s->dom[0].dp * hp / h0 : 0;
+    if (!(dpp > 0)) return 0;
+    double pband = ceil(b->buffsizeh * hp / dpp - 1e-6) * dpp, ov = b->overlappingh * hc;
+    for (int a = 0; a < 3; a++) {
+        if (s->dim == 2 && a == 1) continue;
+        double lo = b->point[a], hi = b->point[a] + b->size[a], room = hi - lo;
+        if (lo > s->domain_min[a] + 1e-6 * dpp) room -= ov + pband;
+        if (hi < s->domain_max[a] - 1e-6 * dpp) room -= ov + pband;
+        if (room >= dpp * (1 - 1e-6)) continue;
+        vres_error("%s: %s: the box is too small along %c: its parent's buffer bands (%g m each) fill it; make it "
+                   "wider than %g m", s->name ? s->name : "case", name, "xyz"[a], pband, 2 * (pband + ov) + dpp);
+        return 1;
+    }
+    return 0;
+}
+
+/* Checks of each refinement box: buffer width, room, nesting, normals. Returns the problems found. */
 static int check_boxes(const vres_store *s)
 {
     if (!s->nboxes) return 0;
@@ -139,7 +166,9 @@ static int check_boxes(const vres_store *s)
             vres_error("%s: %s reaches outside %s", cname, name, b->parent >= 0 ? pname : "the simulation domain");
             nprob++;
         }
-        nprob += check_box_normals(s, k, h0, name);
+        nprob += check_box_room(s, k, h0, name);
+        /* DBC walls take no normal (DESIGN.md section 5: both kinds cross an interface) */
+        if (vres_params_get(&s->params, "Boundary", 1) == 2) nprob += check_box_normals(s, k, h0, name);
     }
     free(lines);
     return nprob;
@@ -247,5 +276,6 @@ int vres_case_check(const vres_store *s)
     n += check_boxes(s);
     n += check_domain(s);
     n += check_overlap(s);
+    n += vres_preflight(s, 1);
     return n;
 }

@@ -211,10 +211,12 @@ void cd_read_normals(cd_ctx *c, xmlNodePtr normals)
     static const char *const gkids[] = {"geometryfile", "distanceh", "maxsizeh", "svshapes", NULL};
     cd_check_attrs(c, normals, attrs);
     if (cd_inactive(c, normals)) return;
+    int nbad = 0;
     for (xmlNodePtr n = normals->children; n; n = n->next)
         if (cd_is_elem(n) && !strncmp(cd_name(n), "nor", 3) && strcmp(cd_name(n), "norgeometry"))
             cd_err(c, n, "element <%s> of <normals> is not supported: vres takes wall normals from the drawn shapes "
-                         "or from the shapes of <norgeometry>", cd_name(n));
+                         "or from the shapes of <norgeometry>", cd_name(n)), nbad++;
+    if (nbad) return; /* one message for it: not again as an unknown child, nor the geometry it lacks */
     cd_check_children(c, normals, kids);
     xmlNodePtr g = cd_child(normals, "norgeometry");
     if (g) cd_check_children(c, g, gkids);

@@ -344,9 +344,14 @@ static void cross_checks(cd_ctx *c, vres_store *s, pval *vals)
     /* DualSPHysics VRes (JSphCpuSingle_VRes AddWarningVRes): Symplectic only. */
     if (s->nboxes && vres_params_get(P, "StepAlgorithm", 1) != 2) {
         pval *p = getv(vals, "StepAlgorithm");
-        cd_err(c, p ? p->node : NULL, "variable resolution (<vres> boxes) needs StepAlgorithm=2 (Symplectic); "
-                                      "the case uses %g%s", vres_params_get(P, "StepAlgorithm", 1),
-               p ? "" : " (the default)");
+        if (p)
+            cd_err(c, p->node, "variable resolution (<vres> boxes) needs StepAlgorithm=2 (Symplectic); the case uses %g",
+                   vres_params_get(P, "StepAlgorithm", 1));
+        else { /* the default: named at the first box, which is what asks for it */
+            vres_error("%s:%ld: variable resolution (<bufferbox>) needs StepAlgorithm=2 (Symplectic); the case uses 1 "
+                       "(the default): add <parameter key=\"StepAlgorithm\" value=\"2\"/>", c->src, s->box[0].line);
+            c->nerr++;
+        }
     }
 }
 

@@ -16,6 +16,7 @@
 #include "device.h"
 #include "fileio.h"
 #include "log.h"
+#include "preflight.h"
 #include "solver_couple.h"
 #include "solver_int.h"
 #include "solver_motion.h"
@@ -360,6 +361,11 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     vres_device dev;
     run_resume r = {s->time, 1, 0, 0, 0};
     if (vres_run_read_config(s, o, &c, &set) != 0 || (o->restart && vres_run_read_resume(s, &c, &r) != 0)) {
+        free_set(&set, 0);
+        return VRES_RUN_FAIL;
+    }
+    /* set-ups no run survives (preflight.h), refused before the run directory exists */
+    if (vres_preflight(s, !o->restart && s->step == 0) != 0) {
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }

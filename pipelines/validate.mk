@@ -64,7 +64,7 @@ $(V)/summary.tsv: $(RESULTS) pipelines/validate.mk
 	   printf '# command: make validate VALIDATE="%s" THREADS=$(THREADS) (each entry: cases/CASE/check --threads $(THREADS) --dp DP -o RUNDIR)\n' '$(strip $(VALIDATE))'; \
 	   printf '# made: %s on %s (%s CPUs: %s), vres git %s\n' "$$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$$(uname -n)" "$$(nproc)" \
 	     "$$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)" "$$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"; \
-	   printf '# error and tolerance: as each case defines them (cases/CASE/README.md); stability cases: relative change of the fluid mass (stiff_vres_*: largest total mass drift of ledger.tsv, against one particle mass per segment)\n'; \
+	   printf '# error and tolerance: as each case defines them (cases/CASE/README.md); stability cases: largest speed over c0, tolerance 1, the fluid mass a condition (stiff_vres_*: largest total mass drift of ledger.tsv, against one particle mass per segment)\n'; \
 	   printf '# case\tdp_m\tparticles\tsteps\trun_time_s\terror\ttolerance\tverdict\n'; \
 	   for r in $(RESULTS); do \
 	     awk -F'\t' -v f="$$r" '{v[$$1] = $$2} END { n = split("case dp_m particles steps run_time_s error tolerance verdict", k, " "); \

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "casedef.h"
 #include "casedef_int.h"
@@ -54,6 +55,51 @@ static vres_store *rd_opts(const char *xml, double dp, ...)
     vres_case_opts o = {dp, n, sets, NULL, NULL};
     return vres_case_read(xml, strlen(xml), "t.xml", ".", &o);
 }
+
+/* Read xml with overrides (NULL-terminated list), which must be refused, and return what the
+ * reader printed on stderr (a static buffer). */
+static const char *refused_opts(const char *xml, ...)
+{
+    static char err[8192];
+    const char *sets[16];
+    int n = 0;
+    va_list ap;
+    va_start(ap, xml);
+    for (const char *a; n < 15 && (a = va_arg(ap, const char *));) sets[n++] = a;
+    va_end(ap);
+    vres_case_opts o = {0, n, sets, NULL, NULL};
+    fflush(stderr);
+    int saved = dup(STDERR_FILENO);
+    FILE *tmp = tmpfile();
+    ck_assert(saved >= 0 && tmp);
+    dup2(fileno(tmp), STDERR_FILENO);
+    vres_store *s = vres_case_read(xml, strlen(xml), "t.xml", ".", &o);
+    fflush(stderr);
+    dup2(saved, STDERR_FILENO);
+    close(saved);
+    rewind(tmp);
+    size_t len = fread(err, 1, sizeof err - 1, tmp);
+    err[len] = 0;
+    fclose(tmp);
+    ck_assert_msg(s == NULL, "the case was read; wanted a refusal");
+    return err;
+}
+
+/* The number of lines of text t. */
+static int count_lines(const char *t)
+{
+    int n = 0;
+    for (; *t; t++) n += *t == '\n';
+    return n;
+}
+
+/* The reader refuses xml (read with the overrides that follow want) with a message holding
+ * want, which names the file and the line ("t.xml:3: ..."). */
+#define REFUSED(xml, want, ...)                                                                    \
+    do {                                                                                           \
+        const char *err_ = refused_opts(xml, __VA_ARGS__);                                        \
+        ck_assert_msg(strstr(err_, want) != NULL, "wanted \"%s\" in: %s", want, err_);             \
+    } while (0)
 
 /* Read xml with no options. */
 static vres_store *rd(const char *xml)
@@ -148,19 +194,24 @@ START_TEST(constants_3d)
 }
 END_TEST
 
-/* Values DualSPHysics rejects. */
+/* Values DualSPHysics rejects, each named at its line (mkcase puts the case on line 2; a
+ * newline before the element puts it on line 3). */
 START_TEST(constants_errors)
 {
-    ck_assert_ptr_null(rd(mkcase("<cflnumber value=\"0\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<cflnumber value=\"1.5\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<rhop0 value=\"0\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<gamma value=\"-7\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<coefh value=\"1\"/><hdp value=\"2\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<lattice bound=\"2\" fluid=\"1\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<rhopgradient value=\"4\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<gravity x=\"0\" y=\"0\" z=\"0\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<unknownconst value=\"1\"/>", DEF2D, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("<rhop0 value=\"1000\" colour=\"red\"/>", DEF2D, WATER, "", "")));
+    REFUSED(mkcase("\n<cflnumber value=\"0\"/>", DEF2D, WATER, "", ""), "t.xml:3: cflnumber must be in (0, 1] (cflnumber=0)", NULL);
+    REFUSED(mkcase("\n<cflnumber value=\"1.5\"/>", DEF2D, WATER, "", ""), "t.xml:3: cflnumber must be in (0, 1] (cflnumber=1.5)", NULL);
+    REFUSED(mkcase("", DEF2D, WATER, "", ""), "t.xml:2: cflnumber must be in (0, 1] (cflnumber=2)", "cflnumber=2", NULL);
+    REFUSED(mkcase("\n<rhop0 value=\"0\"/>", DEF2D, WATER, "", ""), "t.xml:3: rhop0 must be greater than zero (rhop0=0)", NULL);
+    REFUSED(mkcase("\n<gamma value=\"-7\"/>", DEF2D, WATER, "", ""), "t.xml:3: gamma must be greater than zero (gamma=-7)", NULL);
+    REFUSED(mkcase("<coefh value=\"1\"/>\n<hdp value=\"2\"/>", DEF2D, WATER, "", ""), "t.xml:3: only one of <coefh> and <hdp> may be given", NULL);
+    REFUSED(mkcase("\n<lattice bound=\"2\" fluid=\"1\"/>", DEF2D, WATER, "", ""),
+            "t.xml:3: <lattice bound=\"2\" fluid=\"1\">: only lattice 1 (particles on a cubic lattice) is supported", NULL);
+    REFUSED(mkcase("\n<rhopgradient value=\"4\"/>", DEF2D, WATER, "", ""), "t.xml:3: rhopgradient must be 1 (rhop0), 2 (water column) or 3 (maximum water height), not 4", NULL);
+    REFUSED(mkcase("\n<gravity x=\"0\" y=\"0\" z=\"0\"/>", DEF2D, WATER, "", ""),
+            "t.xml:3: the speed of sound is zero (gravity 0 m/s^2, hswl 0.5 m)", NULL);
+    REFUSED(mkcase("\n<unknownconst value=\"1\"/>", DEF2D, WATER, "", ""), "t.xml:3: element <unknownconst> is not supported in <constantsdef>", NULL);
+    REFUSED(mkcase("\n<rhop0 value=\"1000\" colour=\"red\"/>", DEF2D, WATER, "", ""),
+            "t.xml:3: attribute 'colour' of <rhop0> is not supported", NULL);
 }
 END_TEST
 
@@ -169,17 +220,17 @@ END_TEST
 /* dp <= 0, dp larger than the domain, empty geometry, undefined variable, unknown element. */
 START_TEST(geometry_errors)
 {
-    const char *neg = "<definition dp=\"-0.1\"><pointmin x=\"-1\" y=\"0\" z=\"-1\"/><pointmax x=\"2\" y=\"0\" "
+    const char *neg = "\n<definition dp=\"-0.1\"><pointmin x=\"-1\" y=\"0\" z=\"-1\"/><pointmax x=\"2\" y=\"0\" "
                       "z=\"2\"/></definition>";
-    const char *big = "<definition dp=\"5\"><pointmin x=\"-1\" y=\"0\" z=\"-1\"/><pointmax x=\"2\" y=\"0\" "
+    const char *big = "\n<definition dp=\"5\"><pointmin x=\"-1\" y=\"0\" z=\"-1\"/><pointmax x=\"2\" y=\"0\" "
                       "z=\"2\"/></definition>";
-    ck_assert_ptr_null(rd(mkcase("", neg, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("", big, WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, "<setmkfluid mk=\"0\"/>", "", "")));
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, "<newvar a=\"b+1\"/>" WATER, "", "")));
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER "<drawsphere radius=\"1\"/>", "", "")));
-    ck_assert_ptr_null(rd("<case><casedef>"));
-    ck_assert_ptr_null(rd("<notacase/>"));
+    REFUSED(mkcase("", neg, WATER, "", ""), "t.xml:3: dp must be greater than zero (dp=-0.1)", NULL);
+    REFUSED(mkcase("", big, WATER, "", ""), "t.xml:3: dp=5 is larger than the domain along x", NULL);
+    REFUSED(mkcase("", DEF2D, "\n<setmkfluid mk=\"0\"/>", "", ""), "t.xml:2: the geometry is empty", NULL);
+    REFUSED(mkcase("", DEF2D, "\n<newvar a=\"b+1\"/>" WATER, "", ""), "t.xml:3: <newvar> a=\"b+1\": undefined variable 'b'", NULL);
+    REFUSED(mkcase("", DEF2D, WATER "\n<drawsphere radius=\"1\"/>", "", ""), "t.xml:3: element <drawsphere> is not supported", NULL);
+    REFUSED("<case><casedef>", "t.xml:1: malformed XML", NULL);
+    REFUSED("<notacase/>", "t.xml:1: the root element is <notacase>, not <case>: not a DualSPHysics case file", NULL);
 }
 END_TEST
 
@@ -205,7 +256,7 @@ START_TEST(variables_and_overrides)
     ck_assert_str_eq(origin(s, "dp"), "dp");
     ck_assert_str_eq(s->overrides[s->noverrides - 1], "dp=0.050000000000000003");
     vres_store_free(s);
-    ck_assert_ptr_null(rd_opts(mkcase("", DEF2D, cmd, "", ""), 0, "NoSuchName=1", NULL));
+    REFUSED(mkcase("", DEF2D, cmd, "", ""), "--set NoSuchName=1: ", "NoSuchName=1", NULL);
 }
 END_TEST
 
@@ -365,9 +416,8 @@ START_TEST(domain_in_case)
     ck_assert(s->domain_min[1] == 0 && s->domain_max[1] == 0);
     NEAR(s->domain_max[0], 1.0, 1e-12);
     vres_store_free(s);
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "",
-                                 "<parameters><simulationdomain><posmin x=\"default + 1\"/></simulationdomain>"
-                                 "</parameters>")));
+    REFUSED(mkcase("", DEF2D, WATER, "", "<parameters>\n<simulationdomain><posmin x=\"default + 1\"/></simulationdomain></parameters>"),
+            "t.xml:3: posmin x=\"default + 1\" is not valid: posmin may only subtract (default - V)", NULL);
 }
 END_TEST
 
@@ -403,23 +453,30 @@ START_TEST(vres_boxes)
     ck_assert_int_eq(s->box[0].tracking_mk, -1);
     vres_store_free(s);
     /* Verlet (the default StepAlgorithm) is refused with boxes, as DualSPHysics' VRes does */
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, v, "")));
+    REFUSED(mkcase("", DEF2D, WATER, v, ""), "t.xml:2: variable resolution (<bufferbox>) needs StepAlgorithm=2 (Symplectic); "
+            "the case uses 1 (the default)", NULL);
     /* dpratio missing; tracking of an mkbound that is no body */
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER,
-                                 "<vres><bufferbox><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"1\"/>"
-                                 "</bufferbox></vres>", SYMPL)));
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER TANK,
-                                 "<vres><bufferbox><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"1\"/>"
-                                 "<dpratio v=\"2\"/><tracking mkbound=\"0\"/></bufferbox></vres>", SYMPL)));
+    REFUSED(mkcase("", DEF2D, WATER, "<vres>\n<bufferbox><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"1\"/>"
+                   "</bufferbox></vres>", SYMPL), "t.xml:3: <bufferbox> needs <dpratio v=\"...\">", NULL);
+    REFUSED(mkcase("", DEF2D, WATER TANK, "<vres><bufferbox><point x=\"0\" y=\"0\" z=\"0\"/><size x=\"1\" y=\"0\" z=\"1\"/>"
+                   "<dpratio v=\"2\"/>\n<tracking mkbound=\"0\"/></bufferbox></vres>", SYMPL),
+            "t.xml:3: <tracking mkbound=\"0\">: that mkbound is not a moving or floating body", NULL);
 }
 END_TEST
 
-/* --check: a buffer narrower than 2h is named (box 1); a clean case has no problems. */
+/* --check: a buffer narrower than 2h is named (box 1); a box 0.3 m tall that its parent's two
+ * bands (2h = 0.28 m: 3 layers of 0.1 m each) fill is named; a clean case has no problems. */
 START_TEST(check_buffers)
 {
-    const char *v = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.5\" y=\"0\" z=\"0.3\"/>"
+    const char *v = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.8\" y=\"0\" z=\"0.8\"/>"
                     "<dpratio v=\"2\"/><buffsizeh v=\"1\"/></bufferbox></vres>";
     vres_store *s = rd(mkcase("", DEF2D, WATER, v, SYMPL));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 1);
+    vres_store_free(s);
+    v = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.8\" y=\"0\" z=\"0.3\"/>"
+        "<dpratio v=\"2\"/></bufferbox></vres>";
+    s = rd(mkcase("", DEF2D, WATER, v, SYMPL));
     ck_assert_ptr_nonnull(s);
     ck_assert_int_eq(vres_case_check(s), 1);
     vres_store_free(s);
@@ -430,23 +487,29 @@ START_TEST(check_buffers)
 }
 END_TEST
 
-/* --check: walls without normals (a strip painted by a fill, which gives no normals) crossing
- * the buffer band at the top of a box; the same strip away from the box is fine. */
+/* --check: mDBC walls without normals (a strip painted by a fill, which gives no normals)
+ * crossing the buffer band at the top of a box; the same strip away from the box is fine, and
+ * so is the strip with DBC walls, which take no normal. */
+#define SYMPL_MDBC "<parameters>" P("StepAlgorithm", "2") P("Boundary", "2") "</parameters>"
 START_TEST(check_normals)
 {
     const char *strip = "<setmkbound mk=\"0\"/><fillbox x=\"0.5\" y=\"0\" z=\"1.5\"><modefill>void</modefill>"
                         "<point x=\"0\" y=\"0\" z=\"1.4\"/><size x=\"1\" y=\"0\" z=\"0.2\"/></fillbox>";
-    const char *near = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.5\" y=\"0\" z=\"1.3\"/>"
+    const char *near = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.8\" y=\"0\" z=\"1.3\"/>"
                        "<dpratio v=\"2\"/></bufferbox></vres>";
-    const char *far = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.5\" y=\"0\" z=\"0.3\"/>"
+    const char *far = "<vres><bufferbox><point x=\"0.2\" y=\"0\" z=\"0.1\"/><size x=\"0.8\" y=\"0\" z=\"0.8\"/>"
                       "<dpratio v=\"2\"/></bufferbox></vres>";
     char cmds[1024];
     snprintf(cmds, sizeof cmds, "%s%s", WATER, strip);
-    vres_store *s = rd(mkcase("", DEF2D, cmds, near, SYMPL));
+    vres_store *s = rd(mkcase("", DEF2D, cmds, near, SYMPL_MDBC));
     ck_assert_ptr_nonnull(s);
     ck_assert_int_eq(vres_case_check(s), 1);
     vres_store_free(s);
-    s = rd(mkcase("", DEF2D, cmds, far, SYMPL));
+    s = rd(mkcase("", DEF2D, cmds, near, SYMPL));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_int_eq(vres_case_check(s), 0);
+    vres_store_free(s);
+    s = rd(mkcase("", DEF2D, cmds, far, SYMPL_MDBC));
     ck_assert_ptr_nonnull(s);
     ck_assert_int_eq(vres_case_check(s), 0);
     vres_store_free(s);
@@ -510,8 +573,10 @@ START_TEST(bodies)
         }
     vres_store_free(s);
     /* a nested <obj> and a body with no particles are errors */
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, cmd, "<motion><obj><begin mov=\"1\"/></obj></motion>", "")));
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, cmd, "<floatings><floating mkbound=\"7\" rhopbody=\"1\"/></floatings>", "")));
+    REFUSED(mkcase("", DEF2D, cmd, "<motion>\n<obj><begin mov=\"1\"/></obj></motion>", ""),
+            "t.xml:3: element <obj> (a motion nested in another) is not supported", NULL);
+    REFUSED(mkcase("", DEF2D, cmd, "<floatings>\n<floating mkbound=\"7\" rhopbody=\"1\"/></floatings>", ""),
+            "t.xml:3: <floating> names mkbound 7 but no wall particle has that mk", NULL);
 }
 END_TEST
 
@@ -522,8 +587,10 @@ START_TEST(skips_and_refusals)
                               "<normals active=\"false\"><norplane/></normals>", ""));
     ck_assert_ptr_nonnull(s);
     vres_store_free(s);
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "<normals><norplane/></normals>", "")));
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "<initials/>", "")));
+    REFUSED(mkcase("", DEF2D, WATER, "<normals>\n<norplane/></normals>", ""),
+            "t.xml:3: element <norplane> of <normals> is not supported", NULL);
+    ck_assert_int_eq(count_lines(refused_opts(mkcase("", DEF2D, WATER, "<normals>\n<norplane/></normals>", ""), NULL)), 1);
+    REFUSED(mkcase("", DEF2D, WATER, "\n<initials/>", ""), "t.xml:3: element <initials> is not supported in <casedef>", NULL);
 }
 END_TEST
 
@@ -632,7 +699,8 @@ START_TEST(special_kept)
     ck_assert_ptr_nonnull(strstr(s->gauges_xml, "x=\"0.30000000000000004\"")); /* #Dp*3 evaluated */
     ck_assert_ptr_nonnull(strstr(s->inout_xml, "<inoutzone/>"));
     vres_store_free(s);
-    ck_assert_ptr_null(rd(mkcase("", DEF2D, WATER, "", "<special><shifting/></special>")));
+    REFUSED(mkcase("", DEF2D, WATER, "", "<special>\n<shifting/></special>"),
+            "t.xml:3: element <shifting> is not supported in <special> (supported: gauges, inout)", NULL);
 }
 END_TEST
 

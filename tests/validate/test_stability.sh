@@ -18,7 +18,10 @@ expect 0 "stiff_impact2d: check passes at dp 0.05 to 0.4 s" \
     "$CASES/stiff_impact2d/check" --threads 1 --dp 0.05 --tmax 0.4 -o "$T/imp"
 cp "$OUT" "$T/imp.result"
 check "the run completed" grep -q -P '^outcome\tcompleted$' "$T/imp.result"
-check "no fluid mass lost (error 0)" grep -q -P '^error\t0$' "$T/imp.result"
+check "no fluid mass lost (fluid_mass_change 0)" grep -q -P '^fluid_mass_change\t0$' "$T/imp.result"
+# the error is the largest speed over c0 (a number below its tolerance 1), the density deviation reported
+check "the error is the Mach number, below 1" awk -F'\t' '$1 == "error" {e = $2; n++} END {exit !(n == 1 && e > 0 && e < 1)}' "$T/imp.result"
+check "the largest density deviation is reported, above 0" awk -F'\t' '$1 == "max_density_deviation" {e = $2; n++} END {exit !(n == 1 && e > 0 && e < 0.3)}' "$T/imp.result"
 check "no non-finite value in the last snapshot" grep -q -P '^nonfinite_values\t0$' "$T/imp.result"
 # the front has hit the far wall by 0.4 s: Ritter's 2 sqrt(g H) = 10.8 m/s bounds the speed
 # of a collapsing column from above; the impact's jet reaches several m/s
@@ -33,6 +36,8 @@ check "verdict on the stopped run: pass" [ "$(verdict_of "$T/stop" 3 "$T/stop.lo
 
 cp -r "$T/imp" "$T/nan"; sed -i '$ s/\t[0-9.e+-]*$/\tnan/' "$T/nan/run.tsv"
 check "verdict with a NaN in run.tsv: FAIL" [ "$(verdict_of "$T/nan" 0 /dev/null)" = FAIL ]
+cp -r "$T/imp" "$T/norows"; sed -i '/^[^#]/d' "$T/norows/run.tsv"
+check "verdict on a run.tsv without rows: FAIL" [ "$(verdict_of "$T/norows" 0 /dev/null)" = FAIL ]
 cp -r "$T/stop" "$T/nolast"; rm "$T/nolast/snap_last_good.h5"
 check "verdict on exit 3 without snap_last_good.h5: FAIL" [ "$(verdict_of "$T/nolast" 3 "$T/stop.log")" = FAIL ]
 echo "vres-run: unstable at step 12, t = 0.001 s: something went wrong" >"$T/vague.log"

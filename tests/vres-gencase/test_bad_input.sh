@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# vres-gencase on bad input, under AddressSanitizer: one clear message naming the file (and the
-# line where there is one), exit 1, nothing written.
+# vres-gencase on bad input, under AddressSanitizer: one clear message naming the file and the
+# line of the element at fault (found in the test's own copy with grep -n), exit 1, nothing
+# written.
 source "$(dirname "$0")/../harness.sh"
 GEN=$ASAN/vres-gencase
 CASE=$CASES/dsph_dambreak2d/dambreak2d_Def.xml
@@ -15,28 +16,36 @@ bad() {
 }
 
 sed 's|<gamma value="7" />|<gamma value="7">|' "$CASE" >"$T/malformed.xml"
-bad "malformed XML" "malformed\.xml:[0-9]+: malformed XML: .*mismatch" "$T/malformed.xml"
+# libxml2 reports the mismatch where the enclosing element closes, naming the open tag's line
+open=$(grep -n '<gamma value="7">' "$T/malformed.xml" | cut -d: -f1)
+close=$(grep -n '</constantsdef>' "$T/malformed.xml" | cut -d: -f1)
+bad "malformed XML" "malformed\.xml:$close: malformed XML: Opening and ending tag mismatch: gamma line $open and constantsdef" "$T/malformed.xml"
 
 sed 's|<setdrawmode mode="full" />|<drawsphere radius="1" />|' "$CASE" >"$T/unknown.xml"
 line=$(grep -n drawsphere "$T/unknown.xml" | cut -d: -f1)
 bad "unknown element with its line" "unknown\.xml:$line: element <drawsphere> is not supported" "$T/unknown.xml"
 
 sed 's|#WaterWidth|#WaterWidht|' "$CASE" >"$T/undefined.xml"
-bad "undefined variable" "undefined\.xml:[0-9]+: .*undefined variable 'WaterWidht'" "$T/undefined.xml"
+line=$(grep -n WaterWidht "$T/undefined.xml" | cut -d: -f1)
+bad "undefined variable" "undefined\.xml:$line: x=\"#WaterWidht\" of <size>: undefined variable 'WaterWidht'" "$T/undefined.xml"
 
 sed 's|dp="0.01"|dp="0"|' "$CASE" >"$T/dpzero.xml"
-bad "dp zero" "dpzero\.xml:[0-9]+: dp must be greater than zero" "$T/dpzero.xml"
+line=$(grep -n '<definition dp=' "$T/dpzero.xml" | cut -d: -f1)
+bad "dp zero" "dpzero\.xml:$line: dp must be greater than zero \(dp=0\)" "$T/dpzero.xml"
 sed 's|dp="0.01"|dp="-0.01"|' "$CASE" >"$T/dpneg.xml"
-bad "dp negative" "dpneg\.xml:[0-9]+: dp must be greater than zero" "$T/dpneg.xml"
+bad "dp negative" "dpneg\.xml:$line: dp must be greater than zero \(dp=-0\.01\)" "$T/dpneg.xml"
 
 sed 's|point x="0" y="-1" z="0"|point x="50" y="-1" z="50"|' "$CASE" >"$T/empty.xml"
-bad "empty geometry" "empty\.xml:[0-9]+: the geometry is empty" "$T/empty.xml"
+line=$(grep -n '<mainlist>' "$T/empty.xml" | cut -d: -f1)
+bad "empty geometry" "empty\.xml:$line: the geometry is empty: no particles were drawn inside pointmin\.\.pointmax" "$T/empty.xml"
 
 sed 's|<cflnumber value="0.2" />|<cflnumber value="0" />|' "$CASE" >"$T/cfl.xml"
-bad "impossible cflnumber" "cfl\.xml:[0-9]+: cflnumber must be in \(0, 1\]" "$T/cfl.xml"
+line=$(grep -n '<cflnumber' "$T/cfl.xml" | cut -d: -f1)
+bad "impossible cflnumber, at its element" "cfl\.xml:$line: cflnumber must be in \(0, 1\] \(cflnumber=0\)" "$T/cfl.xml"
 
 sed 's|<parameter key="Kernel" value="2"|<parameter key="Kernel" value="1"|' "$CASE" >"$T/kernel.xml"
-bad "unimplemented parameter value" "kernel\.xml:[0-9]+: parameter Kernel=1 is not implemented" "$T/kernel.xml"
+line=$(grep -n 'key="Kernel"' "$T/kernel.xml" | cut -d: -f1)
+bad "unimplemented parameter value" "kernel\.xml:$line: parameter Kernel=1 is not implemented in vres \(it implements Kernel=2" "$T/kernel.xml"
 
 bad "missing file" "nosuch\.xml: cannot open" "$T/nosuch.xml"
 
@@ -54,8 +63,10 @@ nothing_in "$T/out" "nothing written for an unwritable path"
 # every problem of one pass: an unsupported element and an invalid parameter, each with its line
 sed -e 's|<setdrawmode mode="full" />|<drawsphere radius="1" />|' \
     -e 's|<parameter key="StepAlgorithm" value="2"|<parameter key="StepAlgorithm" value="5"|' "$CASE" >"$T/two.xml"
-expect_err 1 "two\.xml:[0-9]+: element <drawsphere> is not supported" "two problems: the element" \
+line=$(grep -n drawsphere "$T/two.xml" | cut -d: -f1)
+pline=$(grep -n 'key="StepAlgorithm"' "$T/two.xml" | cut -d: -f1)
+expect_err 1 "two\.xml:$line: element <drawsphere> is not supported" "two problems: the element" \
     "$GEN" "$T/two.xml" -o "$T/out/case.h5"
-check "two problems: the parameter too" grep -qE "two\.xml:[0-9]+: parameter StepAlgorithm=5: valid values are 1,2" "$ERR"
+check "two problems: the parameter too" grep -qE "two\.xml:$pline: parameter StepAlgorithm=5: valid values are 1,2" "$ERR"
 check "two problems: two messages" [ "$(wc -l <"$ERR")" -eq 2 ]
 nothing_in "$T/out" "two problems: nothing written"

@@ -2,7 +2,8 @@
 # vres-run stops a run that goes bad with exit 3, one diagnosis line (which particle, where,
 # which quantity and value, step and time) and a readable snap_last_good.h5 holding the state
 # before it. Two ways to go bad: a density limit the dam break crosses at once (RhopOutMax
-# 1003 kg/m^3, just above the column's initial hydrostatic 1002.5), and a DtMin above any dt.
+# 1003 kg/m^3, just above the column's initial hydrostatic 1002.5), and a DtMin above the
+# second step's dt.
 source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
 DB=$CASES/dsph_dambreak2d/dambreak2d_Def.xml
@@ -25,9 +26,13 @@ rmax=$(paste <(values /Domains/D0/Type "$T/run/snap_last_good.h5") <(values /Dom
 check "last good fluid densities <= 1003 (max $rmax)" awk -v r="$rmax" 'BEGIN {exit !(r <= 1003)}'
 check "snap 0 and run.tsv written before the stop" [ -f "$T/run/snap_00000.h5" ] && grep -q '^0	0	' "$T/run/run.tsv"
 
-# a DtMin no step can meet: stopped before the first step, the initial state kept
-"$BIN/vres-gencase" -q --dp 0.04 --set DtMin=1 "$DB" -o "$T/dt.h5" || notok "gencase with DtMin 1"
-expect_err 3 'unstable at step 1, t = 0 s: time step [0-9.e-]+ s below DtMin 1 s' "dt below DtMin: exit 3" \
+# a DtMin no step can meet (1 s) is refused before any step (lib/preflight.c,
+# tests/vres-run/test_unworkable.sh); one just below the longest step the run can take,
+# cflnumber h/c0 = 0.2 x 0.0565685 / 87.6986 = 1.29007e-4 s, passes that and is met by the first
+# step (the fluid at rest: no viscous term), not by the second (the column starts to move: the
+# viscous rate shortens dt): stopped there, the state after the first step kept
+"$BIN/vres-gencase" -q --dp 0.04 --set DtMin=1.29e-4 "$DB" -o "$T/dt.h5" || notok "gencase with DtMin 1.29e-4"
+expect_err 3 'unstable at step 2, t = [0-9.e-]+ s: time step [0-9.e-]+ s below DtMin 0\.000129 s' "dt below DtMin: exit 3" \
     "$RUN" --tout 0.05 "$T/dt.h5" -o "$T/run2"
 expect 0 "its snap_last_good.h5 is readable" "$BIN/vres-info" "$T/run2/snap_last_good.h5"
-check "and holds step 0" grep -q -E 'time +0 s, step 0$' "$OUT"
+check "and holds step 1" grep -q -E 'time +[0-9.e-]+ s, step 1$' "$OUT"

@@ -51,21 +51,25 @@ cat >"$T/layer_Def.xml" <<'XML'
     </execution>
 </case>
 XML
-# rise RUN: the largest |z - z0| (m) of the particles of the top row (z0 = 0.19 m) and the largest speed
+# rise RUN: the largest |z - z0| (m) of the particles of the top row (z0 = 0.19 m), the largest
+# speed, and the counts of top-row and of all particles read (zero fails the checks below)
 rise() {
     paste <(values /Domains/D0/Id "$T/l.h5") <(values /Domains/D0/Position "$T/l.h5" | paste - - -) | sort -n >"$T/p0"
     paste <(values /Domains/D0/Id "$1/snap_00001.h5") <(values /Domains/D0/Position "$1/snap_00001.h5" | paste - - -) \
           <(values /Domains/D0/Velocity "$1/snap_00001.h5" | paste - - -) | sort -n >"$T/p1"
-    join "$T/p0" "$T/p1" | awk '$4 > 0.185 {d = $7 - $4; d = d < 0 ? -d : d; if (d > e) e = d}
-                                {s = sqrt($8 * $8 + $10 * $10); if (s > v) v = s} END {print e + 0, v + 0}'
+    join "$T/p0" "$T/p1" | awk '$4 > 0.185 {ntop++; d = $7 - $4; d = d < 0 ? -d : d; if (d > e) e = d}
+                                {n++; s = sqrt($8 * $8 + $10 * $10); if (s > v) v = s} END {print e + 0, v + 0, ntop + 0, n + 0}'
 }
 for tfs in 1.5 0; do
     expect 0 "gencase the flowing layer (ShiftTFS=$tfs)" "$BIN/vres-gencase" --set ShiftTFS=$tfs "$T/layer_Def.xml" -o "$T/l.h5"
     expect 0 "run 0.4 s with shifting (ShiftTFS=$tfs)" "$BIN/vres-run" "$T/l.h5" -o "$T/run$tfs"
     check "modules name shifting (ShiftTFS=$tfs)" grep -q "shifting(full, coef=-2, tfs=$tfs)" "$ERR"
-    check "fluid mass kept (ShiftTFS=$tfs)" awk -F'\t' 'NR == 2 {m = $6} !/^#/ && $6 != m {exit 1}' "$T/run$tfs/run.tsv"
-    read r v < <(rise "$T/run$tfs")
-    echo "# ShiftTFS=$tfs: top row moved up to $r m vertically; largest speed $v m/s"
+    check "fluid mass kept on 2 rows (ShiftTFS=$tfs)" \
+        awk -F'\t' '!/^#/ {if (!n++) m = $6; else if ($6 != m) bad = 1} END {exit bad || n != 2}' "$T/run$tfs/run.tsv"
+    read r v ntop n < <(rise "$T/run$tfs")
+    echo "# ShiftTFS=$tfs: top row moved up to $r m vertically; largest speed $v m/s ($ntop of $n particles in the top row)"
+    # 0.4 m / dp = 20 particles per row; 10 rows of water and 3 of wall
+    check "every particle was read (ShiftTFS=$tfs: $ntop in the top row, $n in all)" [ "$ntop" -eq 20 -a "$n" -eq 260 ]
     if [ "$tfs" = 0 ]; then
         check "without surface treatment the top row lifts ($r m > 0.25 dp)" awk -v r="$r" -v dp=$DP 'BEGIN {exit !(r > 0.25 * dp)}'
     else
