@@ -395,7 +395,9 @@ VRES_PARTICLE_LOOP(vres_couple_buffer_loop, vres_couple_buffer_one,
  * box its band surrounds (its domain's fluid box where its parent feeds it, the child's inner
  * box where a child does) the component is zeroed, so that shifting spreads the band's particles
  * along the interface and never moves them across it (DualSPHysics 5.4's BufferShiftingCpu).
- * A cancelled shifting (NaN) and other particles are left alone. */
+ * The axes are those of the box's frame: for a box that follows a body (region.h's track) the
+ * position is mapped into it and the sums turned into it and back (R^T, R). A cancelled
+ * shifting (NaN) and other particles are left alone. */
 VRES_HD static inline void vres_couple_shift_one(size_t i, const vres_region *reg, int nreg, int k, int dim,
                                                  const double *pos, const uint8_t *type, double *shiftv)
 {
@@ -404,10 +406,15 @@ VRES_HD static inline void vres_couple_shift_one(size_t i, const vres_region *re
     int j;
     const double *x = &pos[3 * i];
     if (vres_region_classify(reg, nreg, k, x, dim, &j) != VRES_REGION_BUFFER || j < 0) return;
+    const vres_region *f = j == reg[k].parent ? &reg[k] : &reg[j]; /* the box whose faces the band follows */
     const double *lo = j == reg[k].parent ? reg[k].fluid_lo : reg[j].inner_lo;
     const double *hi = j == reg[k].parent ? reg[k].fluid_hi : reg[j].inner_hi;
+    double y[3], u[3];
+    const double *q = vres_region_local(f, x, y), *R = f->mot.R;
+    for (int a = 0; a < 3; a++) u[a] = f->track ? R[a] * s[0] + R[3 + a] * s[1] + R[6 + a] * s[2] : s[a];
     for (int a = 0; a < 3; a++)
-        if (!(dim == 2 && a == 1) && (x[a] < lo[a] || x[a] > hi[a])) s[a] = 0.0;
+        if (!(dim == 2 && a == 1) && (q[a] < lo[a] || q[a] > hi[a])) u[a] = 0.0;
+    for (int a = 0; a < 3; a++) s[a] = f->track ? R[3 * a] * u[0] + R[3 * a + 1] * u[1] + R[3 * a + 2] * u[2] : u[a];
 }
 
 /* vres_couple_shift_loop_cpu / _cuda (n, reg, nreg, k, dim, pos, type, shiftv). */

@@ -11,19 +11,11 @@
 
 #include "device.h"
 #include "ptype.h"
+#include "rigid.h"
 
 #ifdef __cplusplus
 extern "C" { /* also read by the CUDA sources (.cu, compiled as C++) */
 #endif
-
-/* A body's motion at one time. */
-typedef struct vres_motion_state {
-    double R[9];    /* rotation (row-major) of x(t) = R x(0) + d */
-    double d[3];    /* translation of the same (m) */
-    double v[3];    /* velocity of the point p (m/s) */
-    double w[3];    /* angular velocity (rad/s): a point x moves at v + w x (x - p) */
-    double p[3];    /* point of the rotation axis (m) */
-} vres_motion_state;
 
 /* What placing a moving wall particle needs of a body: which particles are its own. */
 typedef struct vres_wall_body {

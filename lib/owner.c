@@ -3,10 +3,16 @@
 
 #include "log.h"
 
-/* 1 when x lies in the box of domain d (faces included; y ignored in 2D). A box without volume
- * on an axis in use holds nothing, so a child whose box was never set owns no point. */
-static int in_box(int dim, const vres_domain *d, const double x[3])
+/* 1 when x lies in the box of domain k of s (faces included; y ignored in 2D), where the box is
+ * at the store's time: a box that follows a body (kernels/region.h's track) tests x mapped
+ * into its frame. A box without volume on an axis in use holds nothing, so a child whose box
+ * was never set owns no point. */
+static int in_box(const vres_store *s, size_t k, const double x0[3])
 {
+    const int dim = s->dim;
+    const vres_domain *d = &s->dom[k];
+    double y[3];
+    const double *x = s->region ? vres_region_local(&s->region[k], x0, y) : x0;
     for (int a = 0; a < 3; a++) {
         if (a == 1 && dim == 2) continue;
         if (!(d->box_max[a] > d->box_min[a])) return 0;
@@ -24,7 +30,7 @@ size_t vres_owner(const vres_store *s, const double x[3])
         size_t best = cur;
         for (size_t k = 1; k < s->ndomains; k++) {
             const vres_domain *d = &s->dom[k];
-            if (k == cur || d->parent < 0 || (size_t)d->parent != cur || !in_box(s->dim, d, x)) continue;
+            if (k == cur || d->parent < 0 || (size_t)d->parent != cur || !in_box(s, k, x)) continue;
             if (best == cur || d->dp < s->dom[best].dp) best = k;
         }
         if (best == cur) break;

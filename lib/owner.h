@@ -12,7 +12,9 @@
  * The rule follows the nesting tree: from the root, step into the child whose box holds the
  * point (the one of smallest dp when sibling boxes overlap, then the lower index) until no
  * child's box does. A box that pokes out of its parent's box thus owns only the part inside,
- * and siblings and any depth need nothing more. Box faces belong to the child. */
+ * and siblings and any depth need nothing more. Box faces belong to the child. A box that
+ * follows a body owns where its motion has it at the store's time (its region's track state,
+ * which every snapshot holds). */
 #ifndef VRES_OWNER_H
 #define VRES_OWNER_H
 

@@ -15,6 +15,7 @@
 #include "casedef.h"
 #include "log.h"
 #include "region.h"
+#include "track.h"
 
 #define TIE 1e-6 /* in dp: a node this close to a box face counts as on it (as the canvas does) */
 
@@ -28,6 +29,7 @@ typedef struct pdom {
     double buffsizeh;    /* buffer width in h */
     double overlappingh; /* overlap in the child's h */
     int tracking_mk;     /* tracked mkbound, -1 none */
+    int body;            /* the tracked body's index in the store's bodies, -1 none */
     double ref[3];       /* its lattice's reference point (m) */
     double lo[3], hi[3]; /* its box as configured, cut to the simulation domain (m) */
     unsigned open;       /* VRES_FACE bits of the box's faces on the simulation domain's edge */
@@ -42,6 +44,7 @@ typedef struct plan {
     pdom *d;             /* [n] domains, parents first */
     int nerr;            /* problems found */
     double dmin[3], dmax[3]; /* the simulation domain the boxes are cut to (sim_extent) */
+    vres_sweep sw;       /* the bodies' motions over [0, TimeMax] when a box follows one (sw.n = 0: none does) */
 } plan;
 
 /* "bufferbox K (line L)" for messages about domain k (its box's 1-based index in the case). */
@@ -170,7 +173,7 @@ static void choose(plan *p, const vres_part_opts *o)
     pdom *z = &p->d[0];
     z->box = z->parent = -1;
     z->dp = r->dp, z->h = r->h, z->mass = r->mass, z->dpratio = 1;
-    z->buffsizeh = vres_params_get(&s->params, "buffsizeh", 2), z->tracking_mk = -1;
+    z->buffsizeh = vres_params_get(&s->params, "buffsizeh", 2), z->tracking_mk = z->body = -1;
     const vres_param *pr = vres_params_find(&s->params, "pointref");
     for (int a = 0; a < 3; a++) z->ref[a] = pr && pr->n == 3 ? pr->v[a] : 0;
     p->n = 1;
@@ -183,7 +186,7 @@ static void choose(plan *p, const vres_part_opts *o)
         if (par < 0) continue; /* its parent was left out */
         pdom *d = &p->d[p->n];
         dom_of[b] = p->n++;
-        d->box = (int)b, d->parent = par, d->line = x->line, d->tracking_mk = x->tracking_mk;
+        d->box = (int)b, d->parent = par, d->line = x->line, d->tracking_mk = x->tracking_mk, d->body = -1;
         d->dpratio = o->set_dpratio ? o->dpratio : x->dpratio;
         d->buffsizeh = o->set_buffsizeh ? o->buffsizeh : x->buffsizeh;
         d->overlappingh = o->set_overlappingh ? o->overlappingh : x->overlappingh;
@@ -356,11 +359,218 @@ static void check_bodies(plan *p, int k)
 }
 
 /* ------------------------------------------------------------------------------------------
+ * Boxes that follow a body (<tracking>, lib/track.h)
+ * ---------------------------------------------------------------------------------------- */
+
+/* What a box that follows a body needs: a body with a prescribed motion (a floating one is
+ * refused by name), no face on the simulation domain's edge (a face there would leave the
+ * edge), and a TimeMax (its walls are drawn along its path up to then). Boxes may nest: each
+ * follows its own body (or stands still), and check_path keeps each inside its parent. */
+static void check_tracking(plan *p, int k)
+{
+    pdom *d = &p->d[k];
+    const vres_store *s = p->s;
+    if (d->tracking_mk < 0) return;
+    d->body = vres_track_body(s, d->tracking_mk);
+    if (d->body < 0) {
+        int floating = 0;
+        for (size_t b = 0; b < s->nbodies; b++)
+            floating |= s->body[b].kind == VRES_FLOATING && s->body[b].mkbound == d->tracking_mk;
+        if (floating)
+            perr(p, k, "<tracking mkbound=\"%d\">: mkbound %d is a floating body; boxes that follow floating bodies "
+                       "are not implemented yet (vres-run moves bodies with a prescribed <motion> only)",
+                 d->tracking_mk, d->tracking_mk);
+        else
+            perr(p, k, "<tracking mkbound=\"%d\">: no body with a <motion> has that mkbound", d->tracking_mk);
+        return;
+    }
+    if (d->open)
+        perr(p, k, "it follows mkbound %d but reaches the simulation domain's edge: a tracking box must lie inside "
+                   "the domain (its faces there would move off it)", d->tracking_mk);
+    else if (!(vres_params_get(&s->params, "TimeMax", 0) > 0))
+        perr(p, k, "it follows mkbound %d but the store has no TimeMax: its walls are drawn along its path up to "
+                   "TimeMax", d->tracking_mk);
+}
+
+/* Sample the bodies' motions over [0, TimeMax] when a box follows one (p->sw), each body's
+ * reach its particles and the boxes (buffer bands grown by the drawing's margin) that follow
+ * it, no point of a reach moving more than the finest tracking dp between samples; each
+ * tracking region then follows its body (its motion at t = 0, the sweep's end as track_until).
+ * 0, or -1 after reporting. */
+static int make_sweep(plan *p)
+{
+    const vres_store *s = p->s;
+    const size_t nb = s->nbodies;
+    double step = INFINITY;
+    for (int k = 1; k < p->n; k++)
+        if (p->d[k].body >= 0) step = fmin(step, p->d[k].dp);
+    if (!(step < INFINITY)) return 0;
+    double (*lo)[3] = vres_xmalloc(sizeof *lo * nb), (*hi)[3] = vres_xmalloc(sizeof *hi * nb);
+    for (size_t b = 0; b < nb; b++)
+        for (int a = 0; a < 3; a++) lo[b][a] = INFINITY, hi[b][a] = -INFINITY;
+    const vres_domain *r = &s->dom[0];
+    for (size_t i = 0; i < r->n; i++) {
+        int b = r->type[i] == VRES_MOVING ? vres_track_body(s, r->mk[i]) : -1;
+        for (int a = 0; b >= 0 && a < 3; a++)
+            lo[b][a] = fmin(lo[b][a], r->pos[3 * i + a]), hi[b][a] = fmax(hi[b][a], r->pos[3 * i + a]);
+    }
+    for (int k = 1; k < p->n; k++) {
+        const pdom *d = &p->d[k];
+        double g = 2 * d->h + d->dp;
+        for (int a = 0; d->body >= 0 && a < 3; a++) {
+            lo[d->body][a] = fmin(lo[d->body][a], d->reg.buff_lo[a] - g);
+            hi[d->body][a] = fmax(hi[d->body][a], d->reg.buff_hi[a] + g);
+        }
+    }
+    for (size_t b = 0; b < nb; b++)
+        for (int a = 0; a < 3; a++)
+            if (lo[b][a] > hi[b][a]) lo[b][a] = hi[b][a] = 0; /* a body without particles reaches nothing */
+    int rc = vres_sweep_make(s, vres_params_get(&s->params, "TimeMax", 0), (const double (*)[3])lo,
+                             (const double (*)[3])hi, step, &p->sw);
+    free(lo);
+    free(hi);
+    if (rc != 0) return p->nerr++, -1;
+    for (int k = 1; k < p->n; k++) {
+        pdom *d = &p->d[k];
+        if (d->body < 0) continue;
+        vres_track_at(&d->reg, &s->body[d->body], 0);
+        d->reg.track_until = p->sw.tmax;
+    }
+    vres_debug("tracking boxes: the bodies' motions sampled %zu times over [0, %g] s, at most %g m apart", p->sw.n,
+               p->sw.tmax, p->sw.step);
+    return 0;
+}
+
+/* The box [lo, hi] of domain j's frame where sample i of the sweep has it, seen in the frame of
+ * domain f (-1: the world's): the axis-aligned box [wlo, whi] around it there (m). */
+static void box_in(const plan *p, int j, int f, size_t i, const double lo[3], const double hi[3], double wlo[3],
+                   double whi[3])
+{
+    const int bj = p->sw.n ? p->d[j].body : -1, bf = p->sw.n && f >= 0 ? p->d[f].body : -1;
+    if (bj == bf) { /* both stand still, or follow the same body: the box as it is */
+        memcpy(wlo, lo, 3 * sizeof *wlo), memcpy(whi, hi, 3 * sizeof *whi);
+        return;
+    }
+    vres_region mj, mf; /* the two motions, through region.h's maps */
+    memset(&mj, 0, sizeof mj), memset(&mf, 0, sizeof mf);
+    mj.track = bj >= 0, mf.track = bf >= 0;
+    if (bj >= 0) mj.mot = p->sw.mv[i * p->sw.nbodies + (size_t)bj];
+    if (bf >= 0) mf.mot = p->sw.mv[i * p->sw.nbodies + (size_t)bf];
+    for (int a = 0; a < 3; a++) wlo[a] = INFINITY, whi[a] = -INFINITY;
+    for (int c = 0; c < 8; c++) {
+        const double x[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]};
+        double w[3], y[3];
+        vres_region_world(&mj, x, w);
+        const double *q = vres_region_local(&mf, w, y);
+        for (int a = 0; a < 3; a++) wlo[a] = fmin(wlo[a], q[a]), whi[a] = fmax(whi[a], q[a]);
+    }
+}
+
+/* The box [lo, hi] of domain j's frame where sample i has it, in the world (box_in). */
+static void box_at(const plan *p, int j, size_t i, const double lo[3], const double hi[3], double wlo[3],
+                   double whi[3])
+{
+    box_in(p, j, -1, i, lo, hi, wlo, whi);
+}
+
+/* Along its path a box k that moves or stands in a box that moves stays, with its buffer band,
+ * inside its parent's box (in the parent's frame; but where the parent reaches the domain's
+ * edge) and out of its siblings' boxes and bands. */
+static void check_path(plan *p, int k)
+{
+    const pdom *d = &p->d[k], *q = &p->d[d->parent];
+    char name[64];
+    for (size_t i = 0; i < p->sw.n; i++) {
+        const double t = p->sw.tmax * (double)i / (double)(p->sw.n - 1);
+        double blo[3], bhi[3], flo[3], fhi[3], plo[3], phi[3];
+        box_at(p, k, i, d->reg.buff_lo, d->reg.buff_hi, blo, bhi);
+        box_at(p, k, i, d->reg.fluid_lo, d->reg.fluid_hi, flo, fhi);
+        box_in(p, k, d->parent, i, d->reg.buff_lo, d->reg.buff_hi, plo, phi);
+        for (int a = 0; d->parent > 0 && a < 3; a++) {
+            if (p->dim == 2 && a == 1) continue;
+            double tol = TIE * d->dp;
+            if ((!(q->open & VRES_FACE(a, 0)) && plo[a] < q->reg.fluid_lo[a] - tol) ||
+                (!(q->open & VRES_FACE(a, 1)) && phi[a] > q->reg.fluid_hi[a] + tol)) {
+                perr(p, k, "it leaves its parent %s at t = %g s: the box and its buffer band (%g to %g m along %c, "
+                           "in the parent's frame) must stay in the parent's box (%g to %g m) up to TimeMax",
+                     bname(p, d->parent, name, sizeof name), t, plo[a], phi[a], "xyz"[a], q->reg.fluid_lo[a],
+                     q->reg.fluid_hi[a]);
+                return;
+            }
+        }
+        for (int j = 1; j < p->n; j++) {
+            const pdom *e = &p->d[j];
+            if (j == k || e->parent != d->parent) continue;
+            double eblo[3], ebhi[3], eflo[3], efhi[3];
+            box_at(p, j, i, e->reg.buff_lo, e->reg.buff_hi, eblo, ebhi);
+            box_at(p, j, i, e->reg.fluid_lo, e->reg.fluid_hi, eflo, efhi);
+            if (overlaps(p->dim, blo, bhi, eflo, efhi) || overlaps(p->dim, flo, fhi, eblo, ebhi)) {
+                perr(p, k, "it reaches into its sibling %s at t = %g s: sibling boxes with their buffer bands must not "
+                           "reach into each other up to TimeMax", bname(p, j, name, sizeof name), t);
+                return;
+            }
+        }
+    }
+}
+
+/* 1 when a wall that does not move, at x, lies away from every tracking box's path: outside the
+ * box around all the places of each one's buffer box, grown by g (m). Its region tests then
+ * come out the same at every sample. */
+static int off_paths(const plan *p, const double (*lo)[3], const double (*hi)[3], const double x[3], double g)
+{
+    for (int j = 1; j < p->n; j++)
+        if (p->d[j].body >= 0 && vres_region_in_box(lo[j], hi[j], g, x, p->dim)) return 0;
+    return 1;
+}
+
+/* For each wall particle of src, keep[i] = 1 when domain k needs it at some sample of the
+ * sweep: each tracking region where the sample has it, each moving wall where its body is, the
+ * kernel support grown by the samples' spacing (vres_region_keeps_wall at every sample). A
+ * wall that does not move and lies off every tracking box's path is decided at the first
+ * sample alone. */
+static void swept_walls(const plan *p, int k, const vres_domain *src, double support, uint8_t *keep)
+{
+    vres_region *reg = vres_xmalloc(sizeof *reg * (size_t)p->n);
+    double (*lo)[3] = vres_xcalloc((size_t)p->n, sizeof *lo), (*hi)[3] = vres_xcalloc((size_t)p->n, sizeof *hi);
+    for (int j = 0; j < p->n; j++) {
+        reg[j] = p->d[j].reg;
+        for (int a = 0; a < 3; a++) lo[j][a] = INFINITY, hi[j][a] = -INFINITY;
+        for (size_t i = 0; p->d[j].body >= 0 && i < p->sw.n; i++) {
+            double wl[3], wh[3];
+            box_at(p, j, i, p->d[j].reg.buff_lo, p->d[j].reg.buff_hi, wl, wh);
+            for (int a = 0; a < 3; a++) lo[j][a] = fmin(lo[j][a], wl[a]), hi[j][a] = fmax(hi[j][a], wh[a]);
+        }
+    }
+    const double g = support + 2 * p->sw.step;
+    uint8_t *done = vres_xcalloc(src->n ? src->n : 1, 1);
+    memset(keep, 0, src->n ? src->n : 1);
+    for (size_t i = 0; i < p->sw.n; i++) {
+        for (int j = 1; j < p->n; j++)
+            if (p->d[j].body >= 0) reg[j].mot = p->sw.mv[i * p->sw.nbodies + (size_t)p->d[j].body];
+        for (size_t q = 0; q < src->n; q++) {
+            if (keep[q] || done[q] || !vres_ptype_is_wall(src->type[q])) continue;
+            double x[3];
+            vres_sweep_place(p->s, &p->sw, i, src->type[q], src->mk[q], &src->pos[3 * q], x);
+            keep[q] = (uint8_t)vres_region_keeps_wall(reg, p->n, k, x, p->dim, support + p->sw.step);
+            const int moves = src->type[q] == VRES_MOVING && vres_track_body(p->s, src->mk[q]) >= 0;
+            done[q] = i == 0 && !moves && off_paths(p, (const double (*)[3])lo,
+                                                                                   (const double (*)[3])hi, x, g);
+        }
+    }
+    free(done);
+    free(lo);
+    free(hi);
+    free(reg);
+}
+
+/* ------------------------------------------------------------------------------------------
  * Drawing and sorting the particles
  * ---------------------------------------------------------------------------------------- */
 
 /* Redraw child k at its dp in its buffer box grown by the kernel support (and a dp), less its
- * children's inner boxes shrunk by as much. NULL after the reader said why. */
+ * children's inner boxes shrunk by as much (not those of boxes that move); a tracking box is
+ * drawn in the box around every place of its path (grown by the sweep's spacing too). NULL
+ * after the reader said why. */
 static vres_store *draw_child(plan *p, int k)
 {
     const pdom *d = &p->d[k];
@@ -369,8 +579,14 @@ static vres_store *draw_child(plan *p, int k)
     memset(&clip, 0, sizeof clip);
     double (*hlo)[3] = vres_xcalloc((size_t)p->n, sizeof *hlo), (*hhi)[3] = vres_xcalloc((size_t)p->n, sizeof *hhi);
     for (int a = 0; a < 3; a++) clip.lo[a] = d->reg.buff_lo[a] - g, clip.hi[a] = d->reg.buff_hi[a] + g;
+    for (size_t i = 0; d->body >= 0 && i < p->sw.n; i++) {
+        double lo[3], hi[3];
+        box_at(p, k, i, d->reg.buff_lo, d->reg.buff_hi, lo, hi);
+        for (int a = 0; a < 3; a++)
+            clip.lo[a] = fmin(clip.lo[a], lo[a] - g - p->sw.step), clip.hi[a] = fmax(clip.hi[a], hi[a] + g + p->sw.step);
+    }
     for (int j = k + 1; j < p->n; j++) {
-        if (p->d[j].parent != k) continue;
+        if (p->d[j].parent != k || p->d[j].body >= 0) continue;
         int ok = 1;
         for (int a = 0; a < 3; a++) {
             hlo[clip.nholes][a] = p->d[j].reg.inner_lo[a] + (p->dim == 2 && a == 1 ? -1 : g);
@@ -401,19 +617,22 @@ static void copy_particle(vres_domain *dst, const vres_domain *src, size_t i, in
 
 /* Domain k's particles from src: fluid in its fluid region stays fluid, fluid in a buffer band
  * becomes buffer, fluid elsewhere is dropped; walls within the kernel support of its fluid and
- * buffer stay. Returns the number of fluid particles dropped. */
+ * buffer stay (with a tracking box: at any time up to TimeMax). Returns the number of fluid
+ * particles dropped. */
 static size_t sort_domain(const plan *p, int k, const vres_domain *src, vres_domain *dst)
 {
     vres_region *reg = vres_xmalloc(sizeof *reg * (size_t)p->n); /* the regions side by side, as the run has them */
     for (int j = 0; j < p->n; j++) reg[j] = p->d[j].reg;
     double support = 2 * p->d[k].h;
     size_t dropped = 0;
+    uint8_t *keep = NULL;
+    if (p->sw.n) swept_walls(p, k, src, support, keep = vres_xmalloc(src->n ? src->n : 1));
     vres_domain_reserve(dst, src->n);
     for (size_t i = 0; i < src->n; i++) {
         int t = src->type[i], donor;
         const double *x = &src->pos[3 * i];
         if (vres_ptype_is_wall(t)) {
-            if (vres_region_keeps_wall(reg, p->n, k, x, p->dim, support)) copy_particle(dst, src, i, t);
+            if (keep ? keep[i] : vres_region_keeps_wall(reg, p->n, k, x, p->dim, support)) copy_particle(dst, src, i, t);
             continue;
         }
         int cls = vres_region_classify(reg, p->n, k, x, p->dim, &donor);
@@ -423,6 +642,7 @@ static size_t sort_domain(const plan *p, int k, const vres_domain *src, vres_dom
         }
         copy_particle(dst, src, i, t == VRES_INLET ? t : cls == VRES_REGION_BUFFER ? VRES_BUFFER : VRES_FLUID);
     }
+    free(keep);
     free(reg);
     return dropped;
 }
@@ -499,16 +719,19 @@ static vres_domain *build_domains(plan *p)
 /* The two interfaces of each box: the child's band fed by the parent (segments on the child's
  * buffer box, dp_child apart, normals out of it) and the parent's band fed by the child
  * (segments on the inner box, dp_parent apart, normals into it; none on faces at the domain's
- * edge); segments outside the simulation domain are dropped. */
+ * edge); segments outside the simulation domain are dropped, but those of a tracking box (in
+ * its frame at t = 0: it may carry them into the domain later). */
 static void build_ifaces(plan *p)
 {
     vres_store *s = p->s;
+    const double all_lo[3] = {-INFINITY, -INFINITY, -INFINITY}, all_hi[3] = {INFINITY, INFINITY, INFINITY};
     for (int k = 1; k < p->n; k++) {
         const pdom *d = &p->d[k], *q = &p->d[d->parent];
+        const double *lo = d->body >= 0 ? all_lo : p->dmin, *hi = d->body >= 0 ? all_hi : p->dmax;
         vres_iface *f = vres_store_add_iface(s, k, d->parent);
-        vres_segments_layout(p->dim, d->reg.buff_lo, d->reg.buff_hi, d->dp, 0, 0, p->dmin, p->dmax, f);
+        vres_segments_layout(p->dim, d->reg.buff_lo, d->reg.buff_hi, d->dp, 0, 0, lo, hi, f);
         f = vres_store_add_iface(s, d->parent, k);
-        vres_segments_layout(p->dim, d->reg.inner_lo, d->reg.inner_hi, q->dp, 1, d->open, p->dmin, p->dmax, f);
+        vres_segments_layout(p->dim, d->reg.inner_lo, d->reg.inner_hi, q->dp, 1, d->open, lo, hi, f);
     }
 }
 
@@ -537,16 +760,23 @@ int vres_partition(vres_store *s, const vres_part_opts *o)
                    s->name ? s->name : "store", s->ndomains);
         return -1;
     }
-    plan P = {s, s->dim, 0, NULL, 0, {0, 0, 0}, {0, 0, 0}}, *p = &P;
+    plan P, *p = &P;
+    memset(p, 0, sizeof *p);
+    p->s = s, p->dim = s->dim;
     sim_extent(p);
     choose(p, o);
     check_params(p);
     plan_root(p);
     for (int k = 1; k < p->n && !p->nerr; k++) plan_child(p, k);
+    for (int k = 1; k < p->n && !p->nerr; k++) check_tracking(p, k);
+    if (!p->nerr) make_sweep(p);
     for (int k = 1; k < p->n && !p->nerr; k++) check_nesting(p, k);
+    for (int k = 1; k < p->n && !p->nerr; k++)
+        if (p->d[k].body >= 0 || p->d[p->d[k].parent].body >= 0) check_path(p, k);
     for (int k = 1; k < p->n && !p->nerr; k++) check_bodies(p, k);
     vres_domain *nd = p->nerr ? NULL : build_domains(p);
     if (!nd) {
+        vres_sweep_free(&p->sw);
         free(p->d);
         return -1;
     }
@@ -559,6 +789,7 @@ int vres_partition(vres_store *s, const vres_part_opts *o)
     for (int k = 0; k < p->n; k++) s->region[k] = p->d[k].reg;
     build_ifaces(p);
     keep_boxes(p);
+    vres_sweep_free(&p->sw);
     free(p->d);
     return 0;
 }

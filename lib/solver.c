@@ -32,14 +32,30 @@ static void on_signal(int sig)
     stop_asked = 1;
 }
 
-/* The moving bodies' transforms at time t (s) relative to their placement at t_start, into mv:
- * M = T(t) T(t_start)^-1, so R = R_t R_0^T and d = d_t - R d_0 (mv0: the motion at t_start). */
-static void wall_motion(const vres_store *s, const vres_motion_state *mv0, double t, vres_motion_state *mv)
+/* A time loop's moving bodies: their motion when the moving walls were last anchored (their
+ * reference positions set to where they were: at the loop's start and at each snapshot) and
+ * their transforms now. */
+typedef struct run_motion {
+    double t0;              /* time of the anchor (s) */
+    vres_motion_state *mv0; /* [nbodies] each body's motion at t0 */
+    vres_motion_state *mv;  /* [nbodies] the transforms of the last wall_motion */
+} run_motion;
+
+/* The moving bodies' transforms at time t (s) relative to their placement at the anchor's time
+ * t0, into rm->mv: M = T(t) T(t0)^-1, so R = R_t R_0^T and d = d_t - R d_0; at t0 itself the
+ * identity exactly (R_t R_t^T rounds off it). */
+static void wall_motion(const vres_store *s, run_motion *rm, double t)
 {
+    static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     for (size_t k = 0; k < s->nbodies; k++) {
-        vres_motion_state *m = &mv[k];
-        const vres_motion_state *m0 = &mv0[k];
+        vres_motion_state *m = &rm->mv[k];
+        const vres_motion_state *m0 = &rm->mv0[k];
         vres_motion_eval(&s->body[k], t, m);
+        if (t == rm->t0) {
+            memcpy(m->R, I, sizeof I);
+            memset(m->d, 0, sizeof m->d);
+            continue;
+        }
         double R[9], dd[3];
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
@@ -113,12 +129,6 @@ static size_t check_all(run_set *set, size_t *k)
     return (size_t)-1;
 }
 
-/* A time loop's moving bodies: their motion at the loop's start and their transforms now. */
-typedef struct run_motion {
-    vres_motion_state *mv0; /* [nbodies] each body's motion at the loop's start */
-    vres_motion_state *mv;  /* [nbodies] the transforms of the last wall_motion */
-} run_motion;
-
 /* One Symplectic step from time t (step `step`) of every domain, with the forces already
  * evaluated at the step's start and dt from them: predictor, mid-step check and sort (and the
  * coupling's interpolation), forces, corrector, mDBC, then the coupling's exchange. Returns
@@ -129,7 +139,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
     double amax, visc;
     size_t kmin, k;
     for (k = 0; k < set->n; k++) set->b[k].predict(&set->b[k], dt);
-    wall_motion(s, m->mv0, t + 0.5 * dt, m->mv);
+    wall_motion(s, m, t + 0.5 * dt);
     walls_wrap_all(set, m->mv);
     size_t badmid = check_all(set, &k);
     if (badmid != (size_t)-1)
@@ -140,7 +150,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
     forces_all(set, c, c->shift != 0, &kmin, &amax, &visc);
     if (c->shift && vres_couple_shift(set) != 0) return VRES_RUN_FAIL;
     for (k = 0; k < set->n; k++) set->b[k].correct(&set->b[k], dt, c->shift != 0);
-    wall_motion(s, m->mv0, t + dt, m->mv);
+    wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);
     /* mDBC wall densities follow the fluid, not the continuity equation: set them for the
        state the step ends with (the cells of the predicted state still hold every neighbour
@@ -154,17 +164,28 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
 static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, double dt, int euler)
 {
     for (size_t k = 0; k < set->n; k++) set->b[k].verlet(&set->b[k], dt, euler, c->shift != 0);
-    wall_motion(s, m->mv0, t + dt, m->mv);
+    wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);
     mdbc_all(set);
     return vres_couple_exchange(set, c, t + dt, dt) != 0 ? VRES_RUN_FAIL : VRES_RUN_OK;
+}
+
+/* Anchor every domain's moving walls where they are at time t (s), a snapshot's: a restart
+ * from it opens its backends with those positions as the reference and the motion at t, so
+ * both runs place the walls from the same numbers, bit for bit. */
+static void anchor_walls(const vres_store *s, run_set *set, run_motion *m, double t)
+{
+    if (!s->nbodies) return;
+    for (size_t k = 0; k < set->n; k++) set->b[k].anchor_walls(&set->b[k]);
+    m->t0 = t;
+    for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m->mv0[k]);
 }
 
 /* Check the state the loop starts from: every domain's walls placed, sorted, no fatal particle
  * and none outside its box. 0, or -1 after printing the diagnosis. */
 static int check_start(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, long step)
 {
-    wall_motion(s, m->mv0, t, m->mv);
+    wall_motion(s, m, t);
     for (size_t k = 0; k < set->n; k++) {
         vres_backend *b = &set->b[k];
         b->move_walls(b, m->mv); /* their velocity at the start, which the store may not hold */
@@ -194,7 +215,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     int verlet_count = restarted ? c->verlet_steps - 1 : 0;
     run_clock clk = {vres_run_wall_now(), vres_run_wall_now(), step, vres_run_wall_now()};
     int rc = VRES_RUN_OK, nsnap0 = r->next_snap;
-    run_motion m = {vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv)};
+    run_motion m = {t, vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv)};
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m.mv0[k]);
     if (check_start(s, set, c, &m, t, step) != 0) rc = VRES_RUN_FAIL;
     else if (!restarted && vres_couple_start(set, c) != 0) rc = VRES_RUN_FAIL;
@@ -233,6 +254,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         if (t >= (r->t0 + r->next_due * c->tout) * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12)) {
             while (r->t0 + r->next_due * c->tout <= t * (1 + 1e-9)) r->next_due++;
             if (vres_run_output(s, set, c, r, f, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
+            else anchor_walls(s, set, &m, t);
         }
         if (rc == VRES_RUN_OK && (stop_asked || (ckpt_s > 0 && vres_run_wall_now() - clk.last_ckpt >= ckpt_s))) {
             if (vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;

@@ -10,6 +10,7 @@
 #include "log.h"
 #include "solver_motion.h"
 #include "solver_run.h"
+#include "track.h"
 
 /* Parameters the solver knows (uses, or checks to be at a value that needs nothing). A store
  * parameter outside this list gets a warning, never silence. */
@@ -149,12 +150,33 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
             count[t])
             vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
                        count[t], vres_ptype_name(t)), *bad = 1;
-    /* the coupling's regions and segments stand still (no box velocity): a box that should follow
-       its body would silently stay behind */
-    if (d->tracking_mk >= 0)
-        vres_error("domain D%zu follows mkbound %d (<tracking>): refinement boxes that move are not implemented yet",
-                   k, d->tracking_mk), *bad = 1;
+    /* a box that follows a body (lib/track.h) moves with a prescribed motion only */
+    if (d->tracking_mk >= 0 && d->parent >= 0 && vres_track_body(s, d->tracking_mk) < 0) {
+        int floating = 0;
+        for (size_t b = 0; b < s->nbodies; b++)
+            floating |= s->body[b].kind == VRES_FLOATING && s->body[b].mkbound == d->tracking_mk;
+        vres_error("domain D%zu follows mkbound %d (<tracking>), %s", k, d->tracking_mk,
+                   floating ? "a floating body: boxes that follow floating bodies are not implemented yet"
+                            : "which no body with a prescribed <motion> has");
+        *bad = 1;
+    }
     return 0;
+}
+
+/* A run to c->tmax stays within the time up to which vres-partition drew each tracking box's
+ * walls along its path (its region's track_until). 0, or -1 after printing why. */
+static int check_track_until(const vres_store *s, const run_cfg *c)
+{
+    int bad = 0;
+    for (size_t k = 1; s->region && k < s->ndomains; k++) {
+        const vres_region *r = &s->region[k];
+        if (!r->track || c->tmax <= r->track_until * (1 + 1e-12)) continue;
+        vres_error("domain D%zu follows mkbound %d, and vres-partition drew its walls along its path up to t = %g s "
+                   "(the TimeMax it read); a run to %g s goes beyond: partition again with a larger TimeMax "
+                   "(vres-gencase --set TimeMax=%g)", k, s->dom[k].tracking_mk, r->track_until, c->tmax, c->tmax);
+        bad = 1;
+    }
+    return bad ? -1 : 0;
 }
 
 /* The wall particles of the store's domain dc->index with a normal (those mDBC corrects), with
@@ -306,6 +328,7 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     c->tout = o->tout > 0 ? o->tout : vres_params_get(P, "TimeOut", 0);
     if (!(c->tmax > 0)) vres_error("no end time: the store has no TimeMax; give --tmax T"), bad = 1;
     if (!(c->tout > 0)) vres_error("no output interval: the store has no TimeOut; give --tout DT"), bad = 1;
+    if (c->tmax > 0 && check_track_until(s, c) != 0) bad = 1;
     c->dtmin = vres_params_get(P, "DtMin", 0);
     if (!(c->dtmin > 0)) { /* from the finest domain: its steps are the shortest */
         double h = set->dom[0].h;

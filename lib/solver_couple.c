@@ -23,6 +23,7 @@
 #include "log.h"
 #include "owner.h"
 #include "store.h"
+#include "track.h"
 
 /* One domain's side of the coupling. */
 typedef struct couple_dom {
@@ -30,7 +31,9 @@ typedef struct couple_dom {
     double *pos;          /* [3 nseg] their centres (m) */
     double *normal;       /* [3 nseg] unit normals, away from this domain's fluid */
     double *area;         /* [nseg] length (2D, m) or area (3D, m^2) */
-    double *vbox;         /* [3 nseg] velocity of the segments (m/s): zero, no tracking box yet */
+    double *vbox;         /* [3 nseg] velocity of the segments (m/s): their tracking box's, else zero */
+    double *pos0;         /* [3 nseg] centres in their box's frame at t = 0 (m), NULL when none moves (track.h) */
+    double *normal0;      /* [3 nseg] normals in that frame, NULL likewise */
     double *mass;         /* [nseg] accumulated mass (kg) */
     double *crossed;      /* [nseg] CAPPED, BALANCED: donor mass that crossed it, less what it created (kg) */
     double *dm;           /* [nseg] CAPPED, BALANCED: the last update's interpolated increment (kg), 0 where gated */
@@ -59,6 +62,8 @@ struct vres_couple {
     vres_couple_parts part; /* that time by part (s), the start's excluded as from wall */
     int flux;             /* how segments measure mass: VRES_FLUX_* (kernels/couple.h), --vres-flux */
     int order;            /* order of the buffer interpolation: 1, 2 or VRES_COUPLE_ORDER_AUTO (2 from coarser donors) */
+    const vres_body **track; /* [ndom] the body each domain's box follows (the store's), NULL entries for boxes that
+                                stand still; NULL when no box moves */
 };
 
 double vres_couple_wall(const vres_couple *C)
@@ -108,6 +113,51 @@ static void collect_segments(const vres_store *s, int k, couple_dom *cd)
             cd->src[j] = f;
             cd->srci[j] = i;
         }
+    }
+}
+
+/* The domain whose box carries domain k's segment j: the child of the two domains it couples. */
+static int seg_frame(const vres_couple *C, int k, size_t j)
+{
+    return C->reg[k].parent == C->d[k].donor[j] ? k : C->d[k].donor[j];
+}
+
+/* The bodies the tracking boxes of store s follow (C->track), and the segments of every domain
+ * that has some on a tracking box in their box's frame (pos0, normal0: the store's). Nothing
+ * when no box follows a body. */
+static void track_open(vres_couple *C, const vres_store *s)
+{
+    for (int k = 1; k < C->ndom; k++) {
+        int b = s->dom[k].tracking_mk >= 0 ? vres_track_body(s, s->dom[k].tracking_mk) : -1;
+        if (b < 0) continue; /* vres_run_read_config refused a box that follows no moving body */
+        if (!C->track) C->track = vres_xcalloc((size_t)C->ndom, sizeof *C->track);
+        C->track[k] = &s->body[b];
+    }
+    for (int k = 0; C->track && k < C->ndom; k++) {
+        couple_dom *cd = &C->d[k];
+        int moves = 0;
+        for (size_t j = 0; j < cd->nseg; j++) moves |= C->track[seg_frame(C, k, j)] != NULL;
+        if (!moves) continue;
+        cd->pos0 = vres_xmalloc(3 * cd->nseg * sizeof *cd->pos0);
+        cd->normal0 = vres_xmalloc(3 * cd->nseg * sizeof *cd->normal0);
+        memcpy(cd->pos0, cd->pos, 3 * cd->nseg * sizeof *cd->pos0);
+        memcpy(cd->normal0, cd->normal, 3 * cd->nseg * sizeof *cd->normal0);
+    }
+}
+
+/* The tracking boxes where their bodies are at time t (s): each one's region takes its body's
+ * motion, and the segments on it their place, normal and velocity (track.h). The motion is
+ * the body's since t = 0, from the time alone, so a restart finds the same places. */
+static void track_move(vres_couple *C, double t)
+{
+    if (!C->track) return;
+    for (int k = 1; k < C->ndom; k++)
+        if (C->track[k]) vres_track_at(&C->reg[k], C->track[k], t);
+    for (int k = 0; k < C->ndom; k++) {
+        couple_dom *cd = &C->d[k];
+        for (size_t j = 0; cd->pos0 && j < cd->nseg; j++)
+            vres_track_point(&C->reg[seg_frame(C, k, j)], &cd->pos0[3 * j], &cd->normal0[3 * j], &cd->pos[3 * j],
+                             &cd->normal[3 * j], &cd->vbox[3 * j]);
     }
 }
 
@@ -166,6 +216,8 @@ vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restart
             }
         if (restarted) vres_couple_ledger_load(s, k, &cd->L);
     }
+    track_open(C, s);
+    track_move(C, s->time);
     return C;
 }
 
@@ -177,7 +229,9 @@ void vres_couple_close(vres_couple *C)
         free(cd->pos), free(cd->normal), free(cd->area), free(cd->vbox), free(cd->mass), free(cd->donor);
         free(cd->crossed), free(cd->dm), free(cd->cross);
         free(cd->rho), free(cd->vel), free(cd->state), free(cd->src), free(cd->srci);
+        free(cd->pos0), free(cd->normal0);
     }
+    free(C->track);
     free(C->d);
     free(C->donors);
     free(C->reg);
@@ -382,6 +436,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
     double t0 = vres_run_wall_now();
+    track_move(C, t); /* the boxes that follow a body where it is at the new time */
     /* the crossing count reads the step's start positions: only then must they follow the sort */
     if (sort_domains(C, set, C->flux != VRES_FLUX_INTERP) != 0) return -1;
     double tf = vres_run_wall_now();
@@ -442,6 +497,7 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
 {
     for (int k = 0; k < C->ndom; k++) {
         const couple_dom *cd = &C->d[k];
+        if (C->track && C->track[k]) s->region[k] = C->reg[k]; /* where its box is now */
         for (size_t j = 0; j < cd->nseg; j++) {
             s->iface[cd->src[j]].mass[cd->srci[j]] = cd->mass[j];
             s->iface[cd->src[j]].crossed[cd->srci[j]] = cd->crossed[j];
@@ -477,8 +533,11 @@ static void domain_mass(const vres_store *s, int k, size_t *nf, size_t *nb, doub
     }
 }
 
-double vres_couple_report(vres_couple *C, const vres_store *s, const double *dtk, FILE *f, double t, long step)
+double vres_couple_report(vres_couple *C, const vres_store *s0, const double *dtk, FILE *f, double t, long step)
 {
+    vres_store view = *s0; /* the store with the boxes where the coupling has them now (ownership) */
+    view.region = C->reg;
+    const vres_store *s = &view;
     double total = 0, bound = 0;
     size_t *nf = vres_xcalloc((size_t)C->ndom, sizeof *nf), *nb = vres_xcalloc((size_t)C->ndom, sizeof *nb);
     double *mf = vres_xcalloc((size_t)C->ndom, sizeof *mf), *pend = vres_xcalloc((size_t)C->ndom, sizeof *pend);

@@ -196,6 +196,13 @@ static void cpu_move_walls(vres_backend *b, const vres_motion_state *mv)
     vres_move_wall_cpu(d->n, d->type, d->mk, x->xref, d->pos, d->vel, x->mvel, mv, x->body, x->nbodies);
 }
 
+/* The moving walls' current positions become their reference. */
+static void cpu_anchor_walls(vres_backend *b)
+{
+    cpu_ctx *x = ctx_of(b);
+    if (x->xref) memcpy(x->xref, x->d->pos, 3 * b->n * sizeof *x->xref);
+}
+
 /* Wrap along the periodic axes. */
 static void cpu_wrap(vres_backend *b)
 {
@@ -489,6 +496,7 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     b->correct = cpu_correct;
     b->verlet = cpu_verlet;
     b->move_walls = cpu_move_walls;
+    b->anchor_walls = cpu_anchor_walls;
     b->wrap = cpu_wrap;
     b->mdbc = cpu_mdbc;
     b->check = cpu_check;

@@ -465,6 +465,14 @@ static void cu_move_walls(vres_backend *b, const vres_motion_state *mv)
     launched(x, "moving walls");
 }
 
+/* The moving walls' current positions become their reference (a device copy). */
+static void cu_anchor_walls(vres_backend *b)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed || !x->xref) return;
+    ok(x, cudaMemcpy(x->xref, x->dev.pos, 3 * b->n * sizeof *x->xref, cudaMemcpyDeviceToDevice), "anchor the moving walls");
+}
+
 /* Wrap along the periodic axes. */
 static void cu_wrap(vres_backend *b)
 {
@@ -828,6 +836,7 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
     b->correct = cu_correct;
     b->verlet = cu_verlet;
     b->move_walls = cu_move_walls;
+    b->anchor_walls = cu_anchor_walls;
     b->wrap = cu_wrap;
     b->mdbc = cu_mdbc;
     b->check = cu_check;

@@ -117,6 +117,10 @@ typedef struct vres_backend {
      * (k the body's index in the store, from the start positions x_ref the backend keeps),
      * velocity v + w x (x - p). Does nothing without moving walls. */
     void (*move_walls)(struct vres_backend *b, const vres_motion_state *mv);
+    /* Keep the moving walls' current positions as their reference: move_walls' transforms then
+     * count from now (the time loop anchors them at each snapshot, so that a restart from one
+     * places them bit for bit as the uninterrupted run). Does nothing without moving walls. */
+    void (*anchor_walls)(struct vres_backend *b);
     /* Wrap positions along the periodic axes. */
     void (*wrap)(struct vres_backend *b);
     /* mDBC wall densities for the current positions (nothing without mDBC walls). */

@@ -119,6 +119,14 @@ static int write_region(hid_t f, const vres_region *r, size_t k)
     rc |= put(g, "hole_max", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, r->hole_hi);
     rc |= put(g, "inner_min", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, r->inner_lo);
     rc |= put(g, "inner_max", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, r->inner_hi);
+    if (r->track) { /* a box that follows a body: its motion at the store's time */
+        rc |= put(g, "track_rotation", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 9, r->mot.R);
+        rc |= put(g, "track_shift", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, r->mot.d);
+        rc |= put(g, "track_velocity", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, r->mot.v);
+        rc |= put(g, "track_omega", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, r->mot.w);
+        rc |= put(g, "track_center", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 3, r->mot.p);
+        rc |= put(g, "track_until", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, -1, &r->track_until);
+    }
     if (H5Gclose(g) < 0) rc = -1;
     return rc ? -1 : 0;
 }
@@ -267,7 +275,32 @@ static double *get_rows(ectx *e, hid_t g, const char *path, const char *name, si
     return v;
 }
 
-/* The region boxes of every domain: all or none of them carry buffer_min. */
+/* The motion of domain k's tracking box (group g at path) into r: a rotation (orthonormal, of
+ * determinant 1), finite vectors, a time up to which its walls were drawn. */
+static void read_track(ectx *e, hid_t g, const char *path, vres_region *r)
+{
+    r->track = 1;
+    get(e, g, path, "track_rotation", 9, H5T_NATIVE_DOUBLE, r->mot.R);
+    get3(e, g, path, "track_shift", r->mot.d);
+    get3(e, g, path, "track_velocity", r->mot.v);
+    get3(e, g, path, "track_omega", r->mot.w);
+    get3(e, g, path, "track_center", r->mot.p);
+    get(e, g, path, "track_until", -1, H5T_NATIVE_DOUBLE, &r->track_until);
+    if (e->bad) return;
+    const double *R = r->mot.R;
+    double worst = 0;
+    for (int i = 0; i < 3; i++) /* R R^T = I */
+        for (int j = 0; j < 3; j++) {
+            double d = R[3 * i] * R[3 * j] + R[3 * i + 1] * R[3 * j + 1] + R[3 * i + 2] * R[3 * j + 2] - (i == j);
+            worst = isfinite(d) ? fmax(worst, fabs(d)) : INFINITY;
+        }
+    double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) + R[2] * (R[3] * R[7] - R[4] * R[6]);
+    if (!(worst <= 1e-9) || !(det > 0)) efail(e, "%s: attribute 'track_rotation' is not a rotation", path);
+    else if (!(r->track_until >= 0)) efail(e, "%s: attribute 'track_until' is %g (a time >= 0 expected)", path, r->track_until);
+}
+
+/* The region boxes of every domain: all or none of them carry buffer_min; a domain whose box
+ * follows a body (tracking_mk >= 0) carries its motion too. */
 static void read_regions(ectx *e, hid_t f, vres_store *s)
 {
     size_t have = 0, nwithout = 0, first_without = 0, first_with = 0;
@@ -289,6 +322,7 @@ static void read_regions(ectx *e, hid_t f, vres_store *s)
             get3(e, g, path, "hole_max", r->hole_hi);
             get3(e, g, path, "inner_min", r->inner_lo);
             get3(e, g, path, "inner_max", r->inner_hi);
+            if (s->dom[k].tracking_mk >= 0 && s->dom[k].parent >= 0) read_track(e, g, path, r);
         } else if (!nwithout++) {
             first_without = k;
         }

@@ -7,6 +7,7 @@
  * memory first, so a failure part way prints nothing but the error. */
 #include <dirent.h>
 #include <stdint.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,6 +151,15 @@ static void print_domain(FILE *o, const vres_store *s, size_t k)
     fprintf(o, "  buffsizeh %g h, overlappingh %g h, ", d->buffsizeh, d->overlappingh);
     if (d->tracking_mk < 0) fprintf(o, "tracking none\n");
     else fprintf(o, "tracking mkbound %d\n", d->tracking_mk);
+    if (s->region && s->region[k].track) { /* where the box is at the store's time (boxes above: at t = 0) */
+        const vres_motion_state *m = &s->region[k].mot;
+        const double turn = acos(fmax(-1, fmin(1, 0.5 * (m->R[0] + m->R[4] + m->R[8] - 1)))) * 180 / 3.14159265358979323846;
+        char c[96];
+        fprintf(o, "  box motion since t = 0 (the boxes above: where they were then): x -> R x + d, R a turn of %g deg, "
+                "d %s m\n", turn, vec3(a, sizeof a, m->d));
+        fprintf(o, "  box velocity %s m/s at %s m, angular velocity %s rad/s; path drawn to t = %g s\n",
+                vec3(a, sizeof a, m->v), vec3(b, sizeof b, m->p), vec3(c, sizeof c, m->w), s->region[k].track_until);
+    }
     size_t nt;
     tally *t = count_classes(d, &nt);
     for (size_t i = 0; i < nt;) {

@@ -2,10 +2,10 @@
 # vres-run on variable-resolution input it must refuse (AddressSanitizer build): several
 # domains without their domain tree (no region boxes, region boxes in some domains only, no
 # interfaces), a corrupt /Interfaces (a count that is not the datasets' rows, a NaN position, a
-# non-unit normal, domains that are not parent and child), a box that tracks a body, a
-# restart from a partition store (no snapshot), Verlet with two domains, and --device cuda
-# with two domains. Each gets one message naming the object, exit 1, and nothing in the run
-# directory. The stores are vres-partition's of cases/hydrostatic_vres2d, edited with h5py (so
+# non-unit normal, domains that are not parent and child), a tracking box without its motion or
+# following no moving body, a restart from a partition store (no snapshot), Verlet with two
+# domains, and --device cuda with two domains. Each gets one message naming the object, exit
+# 1, and nothing in the run directory. The stores are vres-partition's of cases/hydrostatic_vres2d, edited with h5py (so
 # that vres's own writer, which checks what it writes, is bypassed) or with the parameter
 # setter of tests/lib/test_solver.c.
 source "$(dirname "$0")/../harness.sh"
@@ -70,10 +70,19 @@ a['count'] = np.uint64(int(a['count']) + 1)"
     edit normal "f['Interfaces/I0/Normal'][2] = [0.5, 0.0, 0.0]"
     refused 1 'normal\.h5: /Interfaces/I0/Normal: segment 2 is not a unit vector' "non-unit interface normal" \
         "$T/normal.h5"
-    # a box that follows a body: the coupling's boxes stand still, so it would stay behind
+    # a box that follows a body: without its motion (the track_* attributes of vres-store(5)), and
+    # with it but following a mkbound that no body with a <motion> has (the fixed walls' 0)
     edit tracking "f['Domains/D1'].attrs['tracking_mk'] = np.int32(0)"
-    refused 1 'domain D1 follows mkbound 0 \(<tracking>\): refinement boxes that move are not implemented yet' \
-        "a tracking box" "$T/tracking.h5"
+    refused 1 "tracking\.h5: /Domains/D1: attribute 'track_rotation' missing" "a tracking box without its motion" \
+        "$T/tracking.h5"
+    edit tracking0 "a = f['Domains/D1'].attrs
+a['tracking_mk'] = np.int32(0)
+a['track_rotation'] = np.eye(3).ravel()
+for n in ('track_shift', 'track_velocity', 'track_omega', 'track_center'):
+    a[n] = np.zeros(3)
+a['track_until'] = 10.0"
+    refused 1 'domain D1 follows mkbound 0 \(<tracking>\), which no body with a prescribed <motion> has' \
+        "a box that follows no moving body" "$T/tracking0.h5"
     edit donor "a = f['Interfaces/I0'].attrs
 a['donor'] = a['receiving']"
     refused 1 'donor\.h5: /Interfaces/I0: domains ([0-9]+) and \1 are not parent and child' \
