@@ -217,7 +217,12 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
                                              const int DIM)
 {
     vres_cell_range nb[27];
-    const int m = vres_cells_neighbours(g, x, nb), nl = DIM + 1, P = (N + 3) / 4 * 4;
+    int m, cx[3];
+    /* 2D: a row's three cells side by side in memory are one range (the same slots in the same
+       order as vres_cells_neighbours gives them) */
+    if (DIM == 2) m = vres_cells_locate(g, x, cx) ? vres_cells_rows2d(g, cx[0], cx[2], nb) : 0;
+    else m = vres_cells_neighbours(g, x, nb);
+    const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
     const vres_wendland k = o.k;
     /* the axes in use (2D: x, z) and, for order 2, the index pairs of the quadratic monomials */
