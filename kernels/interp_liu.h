@@ -195,6 +195,59 @@ typedef double vres_liu_v4 __attribute__((vector_size(32)));
 #define VRES_LIU_LIST 64
 #endif
 
+/* What one pass of the gather adds to the sums from each of its kept fluid donors. */
+typedef struct vres_liu_rows {
+    double e[VRES_LIU_LIST][VRES_LIU_ROW];   /* basis column, zero-padded to a multiple of four */
+    double tr[VRES_LIU_LIST][VRES_LIU_NMAX]; /* test row */
+    double f[VRES_LIU_LIST][4];             /* fields: rho, vx, vy, vz */
+} vres_liu_rows;
+
+/* The gather's last step: the nf donors of S added into the sums A (N rows padded to P columns)
+ * and Rt (by test row), two rows at a time: each row's entries summed over the donors in their
+ * order, in registers (GCC's vectors of four doubles on the CPU: a plain array there is kept in
+ * memory, each addition waiting for the last one's store; two rows give the processor twice
+ * the independent additions to overlap). */
+VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU_NMAX][VRES_LIU_ROW],
+                                                               double Rt[VRES_LIU_NMAX][4], const vres_liu_rows *S,
+                                                               int nf, const int N, const int P)
+{
+    for (int i = 0; i < N; i += 2) {
+#ifdef VRES_LIU_V4
+        const int i1 = i + 1 < N ? i + 1 : i; /* an odd last row is done twice, the same */
+        vres_liu_v4 a0, a1 = {0, 0, 0, 0}, a2 = {0, 0, 0, 0}, rr, b0, b1 = {0, 0, 0, 0}, b2 = {0, 0, 0, 0}, br;
+        memcpy(&a0, &A[i][0], sizeof a0);
+        memcpy(&b0, &A[i1][0], sizeof b0);
+        if (P > 4) memcpy(&a1, &A[i][4], sizeof a1), memcpy(&b1, &A[i1][4], sizeof b1);
+        if (P > 8) memcpy(&a2, &A[i][8], sizeof a2), memcpy(&b2, &A[i1][8], sizeof b2);
+        memcpy(&rr, &Rt[i][0], sizeof rr);
+        memcpy(&br, &Rt[i1][0], sizeof br);
+        for (int j = 0; j < nf; j++) {
+            const double t = S->tr[j][i], u = S->tr[j][i1];
+            vres_liu_v4 e0, e1, e2, f;
+            memcpy(&e0, &S->e[j][0], sizeof e0);
+            memcpy(&f, &S->f[j][0], sizeof f);
+            a0 += t * e0, b0 += u * e0;
+            if (P > 4) memcpy(&e1, &S->e[j][4], sizeof e1), a1 += t * e1, b1 += u * e1;
+            if (P > 8) memcpy(&e2, &S->e[j][8], sizeof e2), a2 += t * e2, b2 += u * e2;
+            rr += t * f, br += u * f;
+        }
+        memcpy(&A[i][0], &a0, sizeof a0);
+        memcpy(&A[i1][0], &b0, sizeof b0);
+        if (P > 4) memcpy(&A[i][4], &a1, sizeof a1), memcpy(&A[i1][4], &b1, sizeof b1);
+        if (P > 8) memcpy(&A[i][8], &a2, sizeof a2), memcpy(&A[i1][8], &b2, sizeof b2);
+        memcpy(&Rt[i][0], &rr, sizeof rr);
+        memcpy(&Rt[i1][0], &br, sizeof br);
+#else
+        for (int i2 = i; i2 < i + 2 && i2 < N; i2++)
+            for (int j = 0; j < nf; j++) {
+                const double t = S->tr[j][i2];
+                for (int jj = 0; jj < P; jj++) A[i2][jj] += t * S->e[j][jj];
+                for (int q = 0; q < 4; q++) Rt[i2][q] += t * S->f[j][q];
+            }
+#endif
+    }
+}
+
 /* vres_liu_gather's body for N unknowns in dimension DIM, both compile-time constants where
  * vres_liu_gather calls it (so the loops over the matrix unroll), the sums kept in locals (not
  * behind s, which the compiler would have to assume aliases the donors' positions). As
@@ -205,10 +258,12 @@ typedef double vres_liu_v4 __attribute__((vector_size(32)));
  *   4. computes each kept donor's kernel terms (square root, W, F, dF/dr, its volume and its
  *      divisions) over those arrays, without a branch (vector instructions again: selects of
  *      inputs where the scalar form branches);
- *   5. adds them into the sums in donor order: D, the nearest distance, and for fluid the matrix
- *      and the right sides, each row padded to P, a multiple of four (the padding's columns
- *      multiply a zero basis entry and are never read), the right sides by test row (Rt[i][q],
- *      the four fields side by side), so that a row's update is whole vector instructions.
+ *   5. adds D and the nearest distance in donor order, and writes each kept fluid donor's basis
+ *      column (padded to P, a multiple of four: the padding multiplies a zero basis entry and is
+ *      never read), test row and fields;
+ *   6. adds those into the matrix and the right sides (by test row: Rt[i][q], the four fields
+ *      side by side), row by row (vres_liu_sum_rows), so that a row's update is whole vector
+ *      instructions.
  * Each term is computed operation for operation as the element-by-element form and every sum
  * adds them in the same order, so the results are the same to the bit. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
@@ -253,11 +308,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         double hg[VRES_LIU_LIST];   /* V h^2 (dF/dr) / r (0 at r = 0): the Hessian rows' factor */
         double vb[VRES_LIU_LIST];   /* V = m / den (m^3) */
     } Q;
-    struct { /* the kept fluid donors' rows of the sums */
-        double e[VRES_LIU_LIST][VRES_LIU_ROW]; /* basis column, zero-padded to P */
-        double tr[VRES_LIU_LIST][VRES_LIU_NMAX]; /* test row */
-        double f[VRES_LIU_LIST][4];           /* fields: rho, vx, vy, vz */
-    } S;
+    vres_liu_rows S;
     int c = 0;
     size_t b0 = m ? nb[0].begin : 0;
     while (c < m) {
@@ -335,45 +386,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             nf++;
         }
         nfluid += nf;
-        /* 6: the sums, two rows at a time: each row's entries summed over the donors in their
-           order, in registers (GCC's vectors of four doubles on the CPU: a plain array there is
-           kept in memory, each addition waiting for the last one's store; two rows give the
-           processor twice the independent additions to overlap) */
-        for (int i = 0; i < N; i += 2) {
-#ifdef VRES_LIU_V4
-            const int i1 = i + 1 < N ? i + 1 : i; /* an odd last row is done twice, the same */
-            vres_liu_v4 a0, a1 = {0, 0, 0, 0}, a2 = {0, 0, 0, 0}, rr, b0, b1 = {0, 0, 0, 0}, b2 = {0, 0, 0, 0}, br;
-            memcpy(&a0, &A[i][0], sizeof a0);
-            memcpy(&b0, &A[i1][0], sizeof b0);
-            if (P > 4) memcpy(&a1, &A[i][4], sizeof a1), memcpy(&b1, &A[i1][4], sizeof b1);
-            if (P > 8) memcpy(&a2, &A[i][8], sizeof a2), memcpy(&b2, &A[i1][8], sizeof b2);
-            memcpy(&rr, &Rt[i][0], sizeof rr);
-            memcpy(&br, &Rt[i1][0], sizeof br);
-            for (int j = 0; j < nf; j++) {
-                const double t = S.tr[j][i], u = S.tr[j][i1];
-                vres_liu_v4 e0, e1, e2, f;
-                memcpy(&e0, &S.e[j][0], sizeof e0);
-                memcpy(&f, &S.f[j][0], sizeof f);
-                a0 += t * e0, b0 += u * e0;
-                if (P > 4) memcpy(&e1, &S.e[j][4], sizeof e1), a1 += t * e1, b1 += u * e1;
-                if (P > 8) memcpy(&e2, &S.e[j][8], sizeof e2), a2 += t * e2, b2 += u * e2;
-                rr += t * f, br += u * f;
-            }
-            memcpy(&A[i][0], &a0, sizeof a0);
-            memcpy(&A[i1][0], &b0, sizeof b0);
-            if (P > 4) memcpy(&A[i][4], &a1, sizeof a1), memcpy(&A[i1][4], &b1, sizeof b1);
-            if (P > 8) memcpy(&A[i][8], &a2, sizeof a2), memcpy(&A[i1][8], &b2, sizeof b2);
-            memcpy(&Rt[i][0], &rr, sizeof rr);
-            memcpy(&Rt[i1][0], &br, sizeof br);
-#else
-            for (int i2 = i; i2 < i + 2 && i2 < N; i2++)
-                for (int j = 0; j < nf; j++) {
-                    const double t = S.tr[j][i2];
-                    for (int jj = 0; jj < P; jj++) A[i2][jj] += t * S.e[j][jj];
-                    for (int q = 0; q < 4; q++) Rt[i2][q] += t * S.f[j][q];
-                }
-#endif
-        }
+        vres_liu_sum_rows(A, Rt, &S, nf, N, P); /* 6 */
     }
     for (int i = 0; i < N; i++) {
         for (int j = 0; j < N; j++) s->a[i][j] = A[i][j];
