@@ -50,6 +50,8 @@ typedef struct vres_cells {
     size_t *begin;      /* [ncells + 2] sorted-slot offsets: cell c holds slots [begin[c], begin[c+1]);
                            slots [begin[ncells], n) hold the particles outside the box */
     size_t *perm;       /* [n] particle index (in the order given to the build) of each sorted slot */
+    int in_order;       /* 1 when perm is the identity (the particles were already in cell order): the
+                           gathers then move nothing */
     size_t nout;        /* particles outside the box at the last build */
     size_t first_out;   /* smallest index of those, (size_t)-1 when there is none */
     size_t cap;         /* particles perm, key and scratch have room for */

@@ -30,6 +30,16 @@
 #define VRES_FORCE_INLINE
 #endif
 
+/* VRES_CLONES: with GCC on x86-64, a function is compiled twice, for AVX2 (four doubles per
+ * vector instruction) and for the baseline (SSE2: two), and the loader picks the one the
+ * processor runs. Both give the same bits: AVX2 has the same IEEE operations, and the clone
+ * leaves FMA off, so no multiply and add are fused into one rounding. Nothing elsewhere. */
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__) && defined(__x86_64__)
+#define VRES_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define VRES_CLONES
+#endif
+
 /* Strip the parentheses of a parameter or argument list. */
 #define VRES_UNPAREN(...) __VA_ARGS__
 

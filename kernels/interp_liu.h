@@ -86,6 +86,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "cells.h"
 #include "device.h"
@@ -174,70 +175,222 @@ VRES_HD static inline void vres_liu_acc_zero(vres_liu_acc *s, int n)
     s->nfluid = 0;
 }
 
+/* VRES_LIU_V4: GCC's vector of four doubles (host code), for the gather's row sums; each
+ * operation on it is the same IEEE operation on each element. */
+#if defined(__GNUC__) && !defined(__CUDACC__)
+#define VRES_LIU_V4 1
+typedef double vres_liu_v4 __attribute__((vector_size(32)));
+#endif
+
+/* Width of a row of the gather's local sums: the largest system's unknowns rounded up to whole
+ * vectors of four doubles. */
+#define VRES_LIU_ROW 12
+
+/* Candidates the gather looks at per pass over a point's neighbour cells (more are done in
+ * turns). On a GPU each thread holds its pass's arrays in slow local memory, so its passes are
+ * short. */
+#ifdef __CUDA_ARCH__
+#define VRES_LIU_LIST 16
+#else
+#define VRES_LIU_LIST 64
+#endif
+
+/* What one pass of the gather adds to the sums from each of its kept fluid donors. */
+typedef struct vres_liu_rows {
+    double e[VRES_LIU_LIST][VRES_LIU_ROW];   /* basis column, zero-padded to a multiple of four */
+    double tr[VRES_LIU_LIST][VRES_LIU_NMAX]; /* test row */
+    double f[VRES_LIU_LIST][4];             /* fields: rho, vx, vy, vz */
+} vres_liu_rows;
+
+/* The gather's last step: the nf donors of S added into the sums A (N rows padded to P columns)
+ * and Rt (by test row), two rows at a time: each row's entries summed over the donors in their
+ * order, in registers (GCC's vectors of four doubles on the CPU: a plain array there is kept in
+ * memory, each addition waiting for the last one's store; two rows give the processor twice
+ * the independent additions to overlap). */
+VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU_NMAX][VRES_LIU_ROW],
+                                                               double Rt[VRES_LIU_NMAX][4], const vres_liu_rows *S,
+                                                               int nf, const int N, const int P)
+{
+    for (int i = 0; i < N; i += 2) {
+#ifdef VRES_LIU_V4
+        const int i1 = i + 1 < N ? i + 1 : i; /* an odd last row is done twice, the same */
+        vres_liu_v4 a0, a1 = {0, 0, 0, 0}, a2 = {0, 0, 0, 0}, rr, b0, b1 = {0, 0, 0, 0}, b2 = {0, 0, 0, 0}, br;
+        memcpy(&a0, &A[i][0], sizeof a0);
+        memcpy(&b0, &A[i1][0], sizeof b0);
+        if (P > 4) memcpy(&a1, &A[i][4], sizeof a1), memcpy(&b1, &A[i1][4], sizeof b1);
+        if (P > 8) memcpy(&a2, &A[i][8], sizeof a2), memcpy(&b2, &A[i1][8], sizeof b2);
+        memcpy(&rr, &Rt[i][0], sizeof rr);
+        memcpy(&br, &Rt[i1][0], sizeof br);
+        for (int j = 0; j < nf; j++) {
+            const double t = S->tr[j][i], u = S->tr[j][i1];
+            vres_liu_v4 e0, e1, e2, f;
+            memcpy(&e0, &S->e[j][0], sizeof e0);
+            memcpy(&f, &S->f[j][0], sizeof f);
+            a0 += t * e0, b0 += u * e0;
+            if (P > 4) memcpy(&e1, &S->e[j][4], sizeof e1), a1 += t * e1, b1 += u * e1;
+            if (P > 8) memcpy(&e2, &S->e[j][8], sizeof e2), a2 += t * e2, b2 += u * e2;
+            rr += t * f, br += u * f;
+        }
+        memcpy(&A[i][0], &a0, sizeof a0);
+        memcpy(&A[i1][0], &b0, sizeof b0);
+        if (P > 4) memcpy(&A[i][4], &a1, sizeof a1), memcpy(&A[i1][4], &b1, sizeof b1);
+        if (P > 8) memcpy(&A[i][8], &a2, sizeof a2), memcpy(&A[i1][8], &b2, sizeof b2);
+        memcpy(&Rt[i][0], &rr, sizeof rr);
+        memcpy(&Rt[i1][0], &br, sizeof br);
+#else
+        for (int i2 = i; i2 < i + 2 && i2 < N; i2++)
+            for (int j = 0; j < nf; j++) {
+                const double t = S->tr[j][i2];
+                for (int jj = 0; jj < P; jj++) A[i2][jj] += t * S->e[j][jj];
+                for (int q = 0; q < 4; q++) Rt[i2][q] += t * S->f[j][q];
+            }
+#endif
+    }
+}
+
 /* vres_liu_gather's body for N unknowns in dimension DIM, both compile-time constants where
  * vres_liu_gather calls it (so the loops over the matrix unroll), the sums kept in locals (not
- * behind s, which the compiler would have to assume aliases the donors' positions). */
+ * behind s, which the compiler would have to assume aliases the donors' positions). As
+ * kernels/sph.h's vres_sph_interact2d, each pass over up to VRES_LIU_LIST candidates
+ *   1. computes their offsets and distances (vector instructions over a run of slots);
+ *   2. keeps the donor fluid and walls inside the support, without a branch;
+ *   3. gathers their masses and densities;
+ *   4. computes each kept donor's kernel terms (square root, W, F, dF/dr, its volume and its
+ *      divisions) over those arrays, without a branch (vector instructions again: selects of
+ *      inputs where the scalar form branches);
+ *   5. adds D and the nearest distance in donor order, and writes each kept fluid donor's basis
+ *      column (padded to P, a multiple of four: the padding multiplies a zero basis entry and is
+ *      never read), test row and fields;
+ *   6. adds those into the matrix and the right sides (by test row: Rt[i][q], the four fields
+ *      side by side), row by row (vres_liu_sum_rows), so that a row's update is whole vector
+ *      instructions.
+ * Each term is computed operation for operation as the element-by-element form and every sum
+ * adds them in the same order, so the results are the same to the bit. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
                                              const double *pos, const float *vel, const float *rho,
                                              const double *mass, const uint8_t *type, const double x[3], const int N,
                                              const int DIM)
 {
     vres_cell_range nb[27];
-    const int m = vres_cells_neighbours(g, x, nb), nl = DIM + 1;
-    const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h;
+    int m, cx[3];
+    /* 2D: a row's three cells side by side in memory are one range (the same slots in the same
+       order as vres_cells_neighbours gives them) */
+    if (DIM == 2) m = vres_cells_locate(g, x, cx) ? vres_cells_rows2d(g, cx[0], cx[2], nb) : 0;
+    else m = vres_cells_neighbours(g, x, nb);
+    const int nl = DIM + 1, P = (N + 3) / 4 * 4;
+    const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
+    const vres_wendland k = o.k;
     /* the axes in use (2D: x, z) and, for order 2, the index pairs of the quadratic monomials */
     const int ax[3] = {0, DIM == 2 ? 2 : 1, 2};
     int qi[6], qj[6];
     for (int p = 0, c = 0; p < DIM; p++)
         for (int q = p; q < DIM; q++, c++) qi[c] = ax[p], qj[c] = ax[q];
-    double A[VRES_LIU_NMAX][VRES_LIU_NMAX], R[4][VRES_LIU_NMAX], div = s->div, d2min = s->d2min;
+    double A[VRES_LIU_NMAX][VRES_LIU_ROW], Rt[VRES_LIU_NMAX][4], div = s->div, d2min = s->d2min;
     int nfluid = s->nfluid;
     for (int i = 0; i < N; i++) {
-        for (int j = 0; j < N; j++) A[i][j] = s->a[i][j];
-        for (int q = 0; q < 4; q++) R[q][i] = s->r[q][i];
+        for (int j = 0; j < P; j++) A[i][j] = j < N ? s->a[i][j] : 0.0;
+        for (int q = 0; q < 4; q++) Rt[i][q] = s->r[q][i];
     }
-    for (int c = 0; c < m; c++)
-        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
-            const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
-            if (!fluid && !wall) continue;
-            double d[3];
-            for (int k = 0; k < 3; k++) d[k] = pos[3 * b + k] + nb[c].shift[k] - x[k];
-            if (DIM == 2) d[1] = 0;
-            const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            if (r2 >= fourh2) continue;
-            const double r = sqrt(r2), negf = -vres_wendland_f(o.k, r); /* -F >= 0 */
-            if (wall) {
-                div += mass[b] / o.rho0 * negf * r2;
-                continue;
+    struct { /* one pass's candidates */
+        double d[3][VRES_LIU_LIST]; /* x_b - x (m; y 0 in 2D) */
+        double r2[VRES_LIU_LIST];   /* |x_b - x|^2 (m^2) */
+        size_t b[VRES_LIU_LIST];    /* slot */
+        uint8_t kept[VRES_LIU_LIST]; /* [0, nkept): indices of the kept candidates */
+    } L;
+    struct { /* the kept donors: what the terms need, then the terms */
+        double r2[VRES_LIU_LIST];   /* r^2 (m^2) */
+        double mb[VRES_LIU_LIST];   /* mass (kg) */
+        double den[VRES_LIU_LIST];  /* density (kg/m^3): rho0 for a wall, whose volume D takes as m / rho0 */
+        double negf[VRES_LIU_LIST]; /* -F(r) >= 0 (m^-(dim+2)) */
+        double dv[VRES_LIU_LIST];   /* its term of D: V (-F) r^2 */
+        double w0[VRES_LIU_LIST];   /* V W (test row 0) */
+        double vg[VRES_LIU_LIST];   /* V (-F) h^2: the gradient test rows' factor */
+        double hg[VRES_LIU_LIST];   /* V h^2 (dF/dr) / r (0 at r = 0): the Hessian rows' factor */
+        double vb[VRES_LIU_LIST];   /* V = m / den (m^3) */
+    } Q;
+    vres_liu_rows S;
+    int c = 0;
+    size_t b0 = m ? nb[0].begin : 0;
+    while (c < m) {
+        int nc = 0; /* candidates in this pass */
+        for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
+            const double sh[3] = {nb[c].shift[0], nb[c].shift[1], nb[c].shift[2]};
+            size_t e = nb[c].end;
+            if (e - b0 > (size_t)(VRES_LIU_LIST - nc)) e = b0 + (size_t)(VRES_LIU_LIST - nc);
+            const int len = (int)(e - b0);
+            const double *pb = pos + 3 * b0;
+            double *c0 = L.d[0] + nc, *c1 = L.d[1] + nc, *c2 = L.d[2] + nc, *cr2 = L.r2 + nc;
+            size_t *cb = L.b + nc;
+            /* 1: the offsets and distances of a run of slots */
+#pragma omp simd
+            for (int j = 0; j < len; j++) {
+                const double d0 = pb[3 * j] + sh[0] - x[0], d2 = pb[3 * j + 2] + sh[2] - x[2];
+                const double d1 = DIM == 2 ? 0.0 : pb[3 * j + 1] + sh[1] - x[1];
+                c0[j] = d0, c1[j] = d1, c2[j] = d2, cr2[j] = d0 * d0 + d1 * d1 + d2 * d2, cb[j] = b0 + (size_t)j;
             }
-            const double vb = mass[b] / rho[b];
-            div += vb * negf * r2;
+            nc += len;
+            b0 = e;
+            if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
+        }
+        /* 2, 3: the donor fluid and walls in the support, and their masses and densities */
+        int nk = 0;
+        for (int j = 0; j < nc; j++) {
+            const size_t b = L.b[j];
+            const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
+            L.kept[nk] = (uint8_t)j;
+            Q.r2[nk] = L.r2[j];
+            Q.mb[nk] = mass[b];
+            Q.den[nk] = fluid ? (double)rho[b] : rho0;
+            nk += (fluid || wall) && L.r2[j] < fourh2;
+        }
+        /* 4: their kernel terms */
+#pragma omp simd
+        for (int j = 0; j < nk; j++) {
+            const double r2 = Q.r2[j], r = sqrt(r2), negf = -vres_wendland_f(k, r), vb = Q.mb[j] / Q.den[j];
+            Q.negf[j] = negf;
+            Q.vb[j] = vb;
+            Q.dv[j] = vb * negf * r2;
+            Q.vg[j] = vb * negf * h2;
+            Q.w0[j] = vb * vres_wendland_w(k, r);
+            const double hgr = vb * h2 * vres_wendland_dfdr(k, r) / (r > 0 ? r : 1.0);
+            Q.hg[j] = r > 0 ? hgr : 0.0;
+        }
+        /* 5: D and the nearest distance in donor order, and each kept fluid donor's basis column
+           and test row (and fields) */
+        int nf = 0;
+        for (int j = 0; j < nk; j++) {
+            const int i0 = L.kept[j];
+            const size_t b = L.b[i0];
+            div += Q.dv[j];
+            if (!vres_type_is_fluid(type[b])) continue; /* a wall: D only */
+            const double r2 = Q.r2[j];
             d2min = r2 < d2min ? r2 : d2min;
-            nfluid++;
+            const double d[3] = {L.d[0][i0], L.d[1][i0], L.d[2][i0]};
             /* column e = [1, d/h (, d_i d_j / h^2)]; test row tr = V [W, h grad_a W (, h^2 grad_a grad_a W)]
                = V [W, -F h^2 (d/h) (, h^2 F delta_ij + h^2 (dF/dr) d_i d_j / r)] */
-            double e[VRES_LIU_NMAX], tr[VRES_LIU_NMAX];
-            const double vg = vb * negf * h2;
+            double *e = S.e[nf], *tr = S.tr[nf];
+            const double vg = Q.vg[j];
             e[0] = 1.0;
-            tr[0] = vb * vres_wendland_w(o.k, r);
+            tr[0] = Q.w0[j];
             for (int i = 1; i < nl; i++) e[i] = d[ax[i - 1]] * inv_h, tr[i] = vg * e[i];
             if (N > nl) {
-                const double hf = -vg, hg = r > 0 ? vb * h2 * vres_wendland_dfdr(o.k, r) / r : 0.0;
+                const double hf = -vg, hg = Q.hg[j];
                 for (int c2 = 0; nl + c2 < N; c2++) {
                     const double dd = d[qi[c2]] * d[qj[c2]];
                     e[nl + c2] = dd * inv_h * inv_h;
                     tr[nl + c2] = (qi[c2] == qj[c2] ? hf : 0.0) + hg * dd;
                 }
             }
-            const double f[4] = {rho[b], vel[3 * b], vel[3 * b + 1], vel[3 * b + 2]};
-            for (int i = 0; i < N; i++) {
-                for (int j = 0; j < N; j++) A[i][j] += tr[i] * e[j];
-                for (int q = 0; q < 4; q++) R[q][i] += f[q] * tr[i];
-            }
+            for (int jj = N; jj < P; jj++) e[jj] = 0.0;
+            S.f[nf][0] = rho[b], S.f[nf][1] = vel[3 * b], S.f[nf][2] = vel[3 * b + 1], S.f[nf][3] = vel[3 * b + 2];
+            nf++;
         }
+        nfluid += nf;
+        vres_liu_sum_rows(A, Rt, &S, nf, N, P); /* 6 */
+    }
     for (int i = 0; i < N; i++) {
         for (int j = 0; j < N; j++) s->a[i][j] = A[i][j];
-        for (int q = 0; q < 4; q++) s->r[q][i] = R[q][i];
+        for (int q = 0; q < 4; q++) s->r[q][i] = Rt[i][q];
     }
     s->div = div, s->d2min = d2min, s->nfluid = nfluid;
 }
@@ -245,7 +398,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
 /* Accumulate into s the donors of x (m) in the cells g (slot order): positions (m), velocities
  * (m/s), densities (kg/m^3), masses (kg) and types (store.h) of the donor domain. Fluid enters
  * everything, walls only D; buffer and inlet particles nothing. 2D ignores y (x-z plane). */
-VRES_HD static inline void vres_liu_gather(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o, const double *pos,
+VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o, const double *pos,
                                            const float *vel, const float *rho, const double *mass,
                                            const uint8_t *type, const double x[3])
 {
@@ -258,14 +411,24 @@ VRES_HD static inline void vres_liu_gather(vres_liu_acc *s, const vres_cells *g,
     }
 }
 
-/* Invert the n x n matrix a (n <= VRES_LIU_NMAX; a is destroyed) into inv by Gauss-Jordan elimination with
- * partial pivoting, the largest |entry| of each column at or below the diagonal taken afresh.
- * Returns 0, or -1 when a pivot is zero or not finite (singular: inv is then unspecified). */
-VRES_HD static inline int vres_liu_invert(int n, double a[VRES_LIU_NMAX][VRES_LIU_NMAX],
-                                          double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
+/* VRES_LIU_UNROLL before a loop over the rows or columns of a matrix of constant size: GCC
+ * unrolls it whole (then every index is a constant); nothing elsewhere. */
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
+#define VRES_LIU_UNROLL _Pragma("GCC unroll 10")
+#else
+#define VRES_LIU_UNROLL
+#endif
+
+/* vres_liu_invert's body for n unknowns, a compile-time constant where vres_liu_invert calls it
+ * (so the loops unroll). Columns of a left of the one being eliminated are never read again, and
+ * of its own column only the other rows' entries (the multipliers), so only the columns right of
+ * it are scaled and updated: inv comes out the same to the bit. */
+VRES_HD static inline VRES_FORCE_INLINE int vres_liu_invert_n(const int n, double a[VRES_LIU_NMAX][VRES_LIU_NMAX],
+                                                              double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++) inv[i][j] = i == j;
+    VRES_LIU_UNROLL
     for (int c = 0; c < n; c++) {
         int p = c;
         for (int r = c + 1; r < n; r++)
@@ -274,24 +437,49 @@ VRES_HD static inline int vres_liu_invert(int n, double a[VRES_LIU_NMAX][VRES_LI
         if (!(fabs(piv) > 0) || !isfinite(piv)) return -1;
         if (p != c)
             for (int j = 0; j < n; j++) {
-                double t = a[c][j];
-                a[c][j] = a[p][j], a[p][j] = t;
+                double t;
+                if (j >= c) t = a[c][j], a[c][j] = a[p][j], a[p][j] = t;
                 t = inv[c][j];
                 inv[c][j] = inv[p][j], inv[p][j] = t;
             }
+        /* the pivot row, scaled, in locals: the row updates below then cannot alias it and run
+           as vector instructions */
         const double ip = 1.0 / piv;
-        for (int j = 0; j < n; j++) a[c][j] *= ip, inv[c][j] *= ip;
+        double pa[VRES_LIU_NMAX], pi[VRES_LIU_NMAX];
+        for (int j = 0; j < n; j++) {
+            pa[j] = a[c][j] * ip; /* read only right of column c */
+            if (j > c) a[c][j] = pa[j];
+            inv[c][j] = pi[j] = inv[c][j] * ip;
+        }
+        VRES_LIU_UNROLL
         for (int r = 0; r < n; r++) {
             if (r == c || a[r][c] == 0) continue;
             const double fr = a[r][c];
-            for (int j = 0; j < n; j++) a[r][j] -= fr * a[c][j], inv[r][j] -= fr * inv[c][j];
+            for (int j = c + 1; j < n; j++) a[r][j] -= fr * pa[j];
+            for (int j = 0; j < n; j++) inv[r][j] -= fr * pi[j];
         }
     }
     return 0;
 }
 
+/* Invert the n x n matrix a (n <= VRES_LIU_NMAX; a is destroyed) into inv by Gauss-Jordan elimination with
+ * partial pivoting, the largest |entry| of each column at or below the diagonal taken afresh.
+ * Returns 0, or -1 when a pivot is zero or not finite (singular: inv is then unspecified).
+ * Compiled for AVX2 too (VRES_CLONES), with the same bits. */
+VRES_HD VRES_CLONES static inline int vres_liu_invert(int n, double a[VRES_LIU_NMAX][VRES_LIU_NMAX],
+                                          double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
+{
+    switch (n) { /* the sizes vres_liu_size gives */
+    case 3: return vres_liu_invert_n(3, a, inv);
+    case 4: return vres_liu_invert_n(4, a, inv);
+    case 6: return vres_liu_invert_n(6, a, inv);
+    case 10: return vres_liu_invert_n(10, a, inv);
+    default: return vres_liu_invert_n(n, a, inv);
+    }
+}
+
 /* The infinity norm (largest row sum of |entries|) of the n x n matrix a. */
-VRES_HD static inline double vres_liu_norm_inf(int n, const double a[VRES_LIU_NMAX][VRES_LIU_NMAX])
+VRES_HD static inline VRES_FORCE_INLINE double vres_liu_norm_inf(int n, const double a[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
     double best = 0;
     for (int i = 0; i < n; i++) {
@@ -302,15 +490,30 @@ VRES_HD static inline double vres_liu_norm_inf(int n, const double a[VRES_LIU_NM
     return best;
 }
 
-/* kappa = ||a||_inf ||a^-1||_inf of the leading n x n block of the sums' matrix, its inverse into
- * inv; INFINITY when singular. */
-VRES_HD static inline double vres_liu_block_cond(const vres_liu_acc *s, int n, double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
+/* vres_liu_block_cond's body for n unknowns, a compile-time constant where vres_liu_block_cond
+ * calls it. */
+VRES_HD static inline VRES_FORCE_INLINE double vres_liu_block_cond_n(const vres_liu_acc *s, const int n,
+                                                                     double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
     double a[VRES_LIU_NMAX][VRES_LIU_NMAX];
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++) a[i][j] = s->a[i][j];
     const double na = vres_liu_norm_inf(n, a);
-    return vres_liu_invert(n, a, inv) == 0 ? na * vres_liu_norm_inf(n, inv) : INFINITY;
+    return vres_liu_invert_n(n, a, inv) == 0 ? na * vres_liu_norm_inf(n, inv) : INFINITY;
+}
+
+/* kappa = ||a||_inf ||a^-1||_inf of the leading n x n block of the sums' matrix, its inverse into
+ * inv; INFINITY when singular. Compiled for AVX2 too (VRES_CLONES), with the same bits. */
+VRES_HD VRES_CLONES static inline double vres_liu_block_cond(const vres_liu_acc *s, int n,
+                                                             double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
+{
+    switch (n) { /* the sizes vres_liu_size gives */
+    case 3: return vres_liu_block_cond_n(s, 3, inv);
+    case 4: return vres_liu_block_cond_n(s, 4, inv);
+    case 6: return vres_liu_block_cond_n(s, 6, inv);
+    case 10: return vres_liu_block_cond_n(s, 10, inv);
+    default: return vres_liu_block_cond_n(s, n, inv);
+    }
 }
 
 /* f[q] = the first row of inv (n x n) against the right sides of field q. */
@@ -370,8 +573,9 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
 
 /* Density, velocity, method and gate quantities at x (m) from the donor domain (cells g in
  * slot order, arrays as vres_liu_gather) under the settings o. A point outside the donor's
- * cell box has no donors: VRES_LIU_NOSUPPORT. */
-VRES_HD static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_opts o, const double *pos,
+ * cell box has no donors: VRES_LIU_NOSUPPORT. Compiled for AVX2 too (VRES_CLONES: the
+ * gather's row updates four doubles at a time), with the same bits. */
+VRES_HD VRES_CLONES static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_opts o, const double *pos,
                                                   const float *vel, const float *rho, const double *mass,
                                                   const uint8_t *type, const double x[3])
 {

@@ -723,16 +723,10 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vr
     }
 #endif
 
-/* VRES_SPH_CLONES: with GCC on x86-64, a per-cell 2D function is compiled twice, for AVX2 (four
- * doubles per vector instruction) and for the baseline (SSE2: two), and the loader picks the one
- * the processor runs. The vector loops of vres_sph_interact2d then do twice the pairs per
- * instruction. Both give the same bits: AVX2 has the same IEEE operations, and the clone leaves
- * FMA off, so no multiply and add are fused into one rounding. */
-#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__) && defined(__x86_64__)
-#define VRES_SPH_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define VRES_SPH_CLONES
-#endif
+/* VRES_SPH_CLONES: a per-cell 2D function compiled for AVX2 and the baseline (device.h's
+ * VRES_CLONES): the vector loops of vres_sph_interact2d then do twice the pairs per instruction,
+ * with the same bits. */
+#define VRES_SPH_CLONES VRES_CLONES
 
 /* VRES_SPH_VARIANT2D(name, ddt, walls, visc, shift) defines name_one (one cell, options fixed)
  * and its loops name_cpu / name_cuda over cells 0..ncells (n = g->ncells + 1); shiftv is

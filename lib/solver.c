@@ -70,15 +70,16 @@ static void wall_motion(const vres_store *s, run_motion *rm, double t)
 
 /* ---- the phases of a step: one backend operation over every domain ---- */
 
-/* Sort every domain by cell (with carry, mid-step: the step start follows), then, at a step's
- * start, let the coupling interpolate the buffers from the donors' sorted fluid (where the last
- * exchange has not just done it). Mid-step the buffers keep the values of the step's start, as
+/* Sort every domain by cell (with carry, mid-step: the step start follows; with sorted 1, at a
+ * step's start, not: nothing moved since the last exchange's sort), then, at a step's start, let
+ * the coupling interpolate the buffers from the donors' sorted fluid (where the last exchange
+ * has not just done it). Mid-step the buffers keep the values of the step's start, as
  * DualSPHysics 5.4 interpolates once per step: interpolating them again there cost a third of
  * the coupled Taylor-Green run's time loop and did not make it more accurate (vres-run(1)).
  * 0, or -1 after printing why. */
-static int sort_all(run_set *set, const run_cfg *c, int carry, double t)
+static int sort_all(run_set *set, const run_cfg *c, int carry, int sorted, double t)
 {
-    for (size_t k = 0; k < set->n; k++)
+    for (size_t k = 0; k < set->n && !sorted; k++)
         if (set->b[k].sort(&set->b[k], carry) != 0) return -1;
     return carry ? 0 : vres_couple_buffers(set, c, t);
 }
@@ -146,7 +147,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
         return vres_run_stop_unstable(s, set, c, r, f->dir, k, badmid, step + 1, t + 0.5 * dt, t, step);
     /* particles that left the domain in the predictor are sorted after every cell, where no
        neighbour sees them; the corrector decides (they are excluded after the step) */
-    if (sort_all(set, c, 1, t + 0.5 * dt) != 0) return VRES_RUN_FAIL;
+    if (sort_all(set, c, 1, 0, t + 0.5 * dt) != 0) return VRES_RUN_FAIL;
     forces_all(set, c, c->shift != 0, &kmin, &amax, &visc);
     if (c->shift && vres_couple_shift(set) != 0) return VRES_RUN_FAIL;
     for (k = 0; k < set->n; k++) set->b[k].correct(&set->b[k], dt, c->shift != 0);
@@ -215,6 +216,8 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     int verlet_count = restarted ? c->verlet_steps - 1 : 0;
     run_clock clk = {vres_run_wall_now(), vres_run_wall_now(), step, vres_run_wall_now()};
     int rc = VRES_RUN_OK, nsnap0 = r->next_snap;
+    int sorted = 0; /* 1 when every domain is in cell order for its positions now: after a coupled
+                       step's exchange (which sorts last), when no particle was excluded since */
     run_motion m = {t, vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv)};
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m.mv0[k]);
     if (check_start(s, set, c, &m, t, step) != 0) rc = VRES_RUN_FAIL;
@@ -226,7 +229,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     while (rc == VRES_RUN_OK && t < c->tmax * (1 - 1e-12)) {
         double amax, visc;
         size_t kmin;
-        if (sort_all(set, c, 0, t) != 0) { rc = VRES_RUN_FAIL; break; }
+        if (sort_all(set, c, 0, sorted, t) != 0) { rc = VRES_RUN_FAIL; break; }
         save_start_all(set);
         dt = forces_all(set, c, c->verlet && c->shift != 0, &kmin, &amax, &visc);
         if (!(dt >= c->dtmin)) {
@@ -243,6 +246,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         if (rc != VRES_RUN_OK) break;
         double nex = r->nexcluded;
         if ((rc = vres_run_after_step(s, set, c, r, f, t + dt, step + 1, t, step)) != VRES_RUN_OK) break;
+        sorted = set->couple && r->nexcluded == nex;
         if (r->nexcluded != nex) {
             if (c->verlet) verlet_count = c->verlet_steps - 1; /* the previous step is gone: Euler next */
             for (size_t k = 0; k < set->n; k++) /* placed again, as when exclusion went through the host */

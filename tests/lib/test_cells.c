@@ -2,8 +2,8 @@
  * (and periodic images) within the search radius that a brute-force O(n^2) search finds, in
  * 2D and 3D, with and without periodicity, periods as short as one or two cells included; the
  * sort is a stable permutation with contiguous cells; particles outside the box are
- * reported and kept out of the search; reordering a domain moves every array together; and a
- * 1M-particle 3D build works. */
+ * reported and kept out of the search; reordering a domain moves every array together; a build
+ * over particles already in cell order moves nothing; and a 1M-particle 3D build works. */
 #include <check.h>
 #include <math.h>
 #include <stdint.h>
@@ -289,6 +289,40 @@ START_TEST(outside_reported)
 }
 END_TEST
 
+/* A build over particles already in cell order is the identity (in_order 1) and the gathers
+ * then leave every array as it is; one particle out of order makes it a real permutation
+ * again (in_order 0), which the gathers apply. */
+START_TEST(in_order_gathers_nothing)
+{
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 0, 1};
+    size_t n = 500;
+    double *pos = random_positions(n, 2, lo, hi, 21);
+    vres_cells g;
+    ck_assert_int_eq(vres_cells_init(&g, 2, 0.1, lo, hi, NULL), 0);
+    vres_cells_build(&g, pos, n);
+    ck_assert_int_eq(g.in_order, 0); /* random positions: not in cell order */
+    vres_cells_gather(&g, pos, 3 * sizeof(double));
+    double *copy = malloc(3 * n * sizeof *copy);
+    memcpy(copy, pos, 3 * n * sizeof *copy);
+    vres_cells_build(&g, pos, n);
+    ck_assert_int_eq(g.in_order, 1);
+    for (size_t s = 0; s < n; s++) ck_assert_uint_eq(g.perm[s], s);
+    check_sorted(&g, pos);
+    vres_cells_gather(&g, pos, 3 * sizeof(double));
+    ck_assert(memcmp(pos, copy, 3 * n * sizeof *copy) == 0);
+    /* the last slot's particle moved to the first cell: the next build must move it */
+    pos[3 * (n - 1)] = 0.01, pos[3 * (n - 1) + 2] = 0.01;
+    vres_cells_build(&g, pos, n);
+    ck_assert_int_eq(g.in_order, 0);
+    vres_cells_gather(&g, pos, 3 * sizeof(double));
+    const size_t last0 = g.begin[1] - 1; /* it comes last in the first cell (stable) */
+    ck_assert(pos[3 * last0] == 0.01 && pos[3 * last0 + 2] == 0.01);
+    free(copy);
+    free(pos);
+    vres_cells_free(&g);
+}
+END_TEST
+
 START_TEST(wrap_positions)
 {
     double lo[3] = {-1, 0, 2}, hi[3] = {1, 1, 3};
@@ -399,6 +433,7 @@ int main(void)
     tcase_add_test(tc, brute_force_periodic_2d);
     tcase_add_test(tc, brute_force_short_periods);
     tcase_add_test(tc, outside_reported);
+    tcase_add_test(tc, in_order_gathers_nothing);
     tcase_add_test(tc, wrap_positions);
     tcase_add_test(tc, bad_parameters);
     tcase_add_test(tc, bbox);
