@@ -275,12 +275,7 @@ START_TEST(partition_2d)
         if (c->type[i] == VRES_FLUID && fabs(c->pos[3 * i + 2] - 0.495) < 1e-9) NEAR(c->press[i], 0, 1e-3);
     /* round trip through a file */
     char path[] = "/tmp/vres-part-XXXXXX";
-    int fd = mkstemp(path);
-    ck_assert_int_ge(fd, 0);
-    close(fd);
-    ck_assert_int_eq(vres_store_write(s, path), 0);
-    vres_store *r = vres_store_read(path);
-    ck_assert_ptr_nonnull(r);
+    vres_store *r = vres_check_roundtrip(s, path);
     ck_assert_uint_eq(r->niface, s->niface);
     ck_assert_uint_eq(r->next_id, s->next_id);
     ck_assert_int_eq(r->iface[1].recv, 0);

@@ -491,12 +491,7 @@ START_TEST(owner_and_store)
     ck_assert_uint_eq(vres_owner(s, left), 0);
     ck_assert_uint_eq(vres_owner(s, right), 1);
     char path[] = "/tmp/vres-track-XXXXXX";
-    int fd = mkstemp(path);
-    ck_assert_int_ge(fd, 0);
-    close(fd);
-    ck_assert_int_eq(vres_store_write(s, path), 0);
-    vres_store *r = vres_store_read(path);
-    ck_assert_ptr_nonnull(r);
+    vres_store *r = vres_check_roundtrip(s, path);
     ck_assert_int_eq(r->region[1].track, 1);
     ck_assert_mem_eq(&r->region[1].mot, &s->region[1].mot, sizeof s->region[1].mot);
     NEAR(r->region[1].track_until, 0.4, 0);
