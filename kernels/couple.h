@@ -406,9 +406,9 @@ VRES_HD static inline void vres_couple_shift_one(size_t i, const vres_region *re
     int j;
     const double *x = &pos[3 * i];
     if (vres_region_classify(reg, nreg, k, x, dim, &j) != VRES_REGION_BUFFER || j < 0) return;
-    const vres_region *f = j == reg[k].parent ? &reg[k] : &reg[j]; /* the box whose faces the band follows */
-    const double *lo = j == reg[k].parent ? reg[k].fluid_lo : reg[j].inner_lo;
-    const double *hi = j == reg[k].parent ? reg[k].fluid_hi : reg[j].inner_hi;
+    const int outer = j == reg[k].parent;               /* k's own band, fed by its parent */
+    const vres_region *f = outer ? &reg[k] : &reg[j];  /* the box whose faces the band follows */
+    const double *lo = outer ? f->fluid_lo : f->inner_lo, *hi = outer ? f->fluid_hi : f->inner_hi;
     double y[3], u[3];
     const double *q = vres_region_local(f, x, y), *R = f->mot.R;
     for (int a = 0; a < 3; a++) u[a] = f->track ? R[a] * s[0] + R[3 + a] * s[1] + R[6 + a] * s[2] : s[a];
