@@ -261,7 +261,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
             else anchor_walls(s, set, &m, t);
         }
         if (rc == VRES_RUN_OK && (stop_asked || (ckpt_s > 0 && vres_run_wall_now() - clk.last_ckpt >= ckpt_s))) {
-            if (vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+            if (vres_run_checkpoint(s, set, c, r, f, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
             else if (stop_asked) {
                 vres_error("interrupted at t = %.6g s, step %ld: state written to %s/checkpoint.h5; continue with "
                            "vres-run --restart %s/checkpoint.h5", t, step, f->dir, f->dir);
@@ -270,7 +270,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         }
     }
     vres_run_progress(c, &clk, s->time, t, step, dt, 1);
-    if (rc == VRES_RUN_OK && vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+    if (rc == VRES_RUN_OK && vres_run_checkpoint(s, set, c, r, f, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
     if (rc == VRES_RUN_OK)
         vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s%s", t, step - step_start,
                   vres_run_wall_now() - clk.start, r->next_snap - nsnap0, f->dir,
@@ -352,7 +352,8 @@ static int open_ledger(run_files *f, const char *dir)
     int fresh = access(path, F_OK) != 0;
     f->ledger = fopen(path, "a");
     if (!f->ledger) vres_error("%s: cannot write: %s", path, strerror(errno));
-    else if (fresh) fputs(vres_couple_ledger_header, f->ledger);
+    else setvbuf(f->ledger, NULL, _IONBF, 0); /* one write per line: a killed run leaves whole lines */
+    if (f->ledger && fresh) fputs(vres_couple_ledger_header, f->ledger);
     free(path);
     return f->ledger ? 0 : -1;
 }
@@ -417,13 +418,14 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
 
     char *tsvpath = vres_xasprintf("%s/run.tsv", o->rundir);
     int fresh = access(tsvpath, F_OK) != 0;
-    run_files f = {o->rundir, fopen(tsvpath, "a"), NULL, NULL};
+    run_files f = {o->rundir, fopen(tsvpath, "a"), NULL, NULL, o->restart_from};
     if (!f.tsv) {
         vres_error("%s: cannot write: %s", tsvpath, strerror(errno));
         free(tsvpath);
         free_set(&set, 1);
         return VRES_RUN_FAIL;
     }
+    setvbuf(f.tsv, NULL, _IONBF, 0); /* one write per line: a killed run leaves whole lines */
     if (fresh)
         fprintf(f.tsv, "# time_s\tstep\tdt_s\tn_fluid\tn_wall\tmass_fluid_kg\tmax_speed_m_s\trho_min_kg_m3\t"
                        "rho_max_kg_m3\twall_s\tparticle_steps_per_s\tn_excluded\tpairs\tinteractions_per_s\n");
