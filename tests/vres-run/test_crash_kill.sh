@@ -5,16 +5,26 @@
 # checkpoint.h5) ends with the uninterrupted run's snapshots and run.tsv, bit for bit. One kill
 # in three lands at a random moment, one while a snapshot is being written (its temporary file
 # is there), one while checkpoint.h5 is (checkpoints every 0.05 s of wall time).
-# VRES_CRASH_SEED=N repeats a run's draws (printed first); VRES_CRASH_KILLS=N (default 24).
+# VRES_CRASH_SEED=N repeats a run's draws (printed first); VRES_CRASH_KILLS=N (default 24);
+# VRES_CRASH_COUPLED=1 kills a coupled run instead (the tilted tank of test_vres_restart.sh, two
+# domains; snapshots compared with their /Interfaces too, and ledger.tsv at the end): slower,
+# not part of make check.
 source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
 seed=${VRES_CRASH_SEED:-$$}
 RANDOM=$seed
 KILLS=${VRES_CRASH_KILLS:-24}
 echo "# seed $seed, $KILLS kills"
-"$BIN/vres-gencase" -q --dp 0.03 "$CASES/dsph_dambreak2d/dambreak2d_Def.xml" -o "$T/db.h5" || notok "gencase the dam break"
-opts=(--threads 1 --tmax 0.03 --tout 0.0015)
-expect 0 "uninterrupted run: 2545 particles to 0.03 s, a snapshot every 0.0015 s" "$RUN" -q "${opts[@]}" "$T/db.h5" -o "$T/ref"
+if [ "${VRES_CRASH_COUPLED:-0}" = 1 ]; then
+    tilted_tank
+    STORE=$T/parts.h5 groups=(/Domains /Interfaces) what="the tilted tank in two domains"
+    opts=(--threads 1 --tmax 0.05 --tout 0.0025)
+else
+    STORE=$T/db.h5 groups=(/Domains) what="the dam break, 2545 particles"
+    "$BIN/vres-gencase" -q --dp 0.03 "$CASES/dsph_dambreak2d/dambreak2d_Def.xml" -o "$STORE" || notok "gencase the dam break"
+    opts=(--threads 1 --tmax 0.03 --tout 0.0015)
+fi
+expect 0 "uninterrupted run: $what, 20 outputs" "$RUN" -q "${opts[@]}" "$STORE" -o "$T/ref"
 nref=$(find "$T/ref" -name 'snap_*.h5' | wc -l)
 check "the uninterrupted run wrote 21 snapshots ($nref)" [ "$nref" -eq 21 ]
 last=$(printf 'snap_%05d.h5' $((nref - 1)))
@@ -24,7 +34,11 @@ declare -A seen # snapshot name -> its inode, size and time when found equal to 
 checked=0 bad=0 ck_checked=0 ck_bad=0 killed=0 midsnap=0 midck=0 from_ck=0
 
 # same NAME: RUNDIR/NAME is readable by vres and its particles equal the uninterrupted run's
-same() { "$BIN/vres-info" "$R/$1" >/dev/null 2>&1 && h5diff -q "$T/ref/$1" "$R/$1" /Domains /Domains >/dev/null 2>&1; }
+same() {
+    local g
+    "$BIN/vres-info" "$R/$1" >/dev/null 2>&1 || return 1
+    for g in "${groups[@]}"; do h5diff -q "$T/ref/$1" "$R/$1" "$g" "$g" >/dev/null 2>&1 || return 1; done
+}
 
 # launch N: start cycle N's run in the background (pid in $pid): a new run when no snapshot is
 # there, else a restart from the newest (every fourth cycle from checkpoint.h5 when there is one;
@@ -34,7 +48,7 @@ launch() {
     newest=$(find "$R" -name 'snap_*.h5' 2>/dev/null | sort | tail -1)
     if [ -z "$newest" ]; then
         rm -rf "$R"
-        "$RUN" "${opts[@]}" --checkpoint 0.05 "$T/db.h5" -o "$R" 2>>"$T/kill.err" &
+        "$RUN" "${opts[@]}" --checkpoint 0.05 "$STORE" -o "$R" 2>>"$T/kill.err" &
         pid=$!
         return
     fi
@@ -108,6 +122,9 @@ check "all $nref snapshots equal to the uninterrupted run's ($nsame)" [ "$n" -eq
 check "no other snapshot" [ "$(find "$R" -name 'snap_*.h5' | wc -l)" -eq "$nref" ]
 check "run.tsv: the uninterrupted run's times, steps and figures" \
     diff <(grep -v '^#' "$T/ref/run.tsv" | cut -f1-9) <(grep -v '^#' "$R/run.tsv" | cut -f1-9)
+if [ -f "$T/ref/ledger.tsv" ]; then
+    check "ledger.tsv: the uninterrupted run's lines" diff "$T/ref/ledger.tsv" "$R/ledger.tsv"
+fi
 check "run.tsv has $nref lines" [ "$(grep -c -v '^#' "$R/run.tsv")" -eq "$nref" ]
 check "no temporary file left (the restarts removed the killed runs')" [ -z "$(find "$R" -name '.*tmp*')" ]
 check "the restarts said they removed what killed runs left" grep -q 'temporary file.* that a killed run left' "$T/kill.err"
