@@ -24,7 +24,11 @@ else
     "$BIN/vres-gencase" -q --dp 0.03 "$CASES/dsph_dambreak2d/dambreak2d_Def.xml" -o "$STORE" || notok "gencase the dam break"
     opts=(--threads 1 --tmax 0.03 --tout 0.0015)
 fi
+w0=$(date +%s.%N)
 expect 0 "uninterrupted run: $what, 20 outputs" "$RUN" -q "${opts[@]}" "$STORE" -o "$T/ref"
+# the kills' pauses scale with the run's wall time, so that on a loaded machine too the chain
+# of restarts gets through the run: up to a sixth of it
+wall=$(awk -v a="$w0" -v b="$(date +%s.%N)" 'BEGIN {printf "%.3f", b - a}')
 nref=$(find "$T/ref" -name 'snap_*.h5' | wc -l)
 check "the uninterrupted run wrote 21 snapshots ($nref)" [ "$nref" -eq 21 ]
 last=$(printf 'snap_%05d.h5' $((nref - 1)))
@@ -83,9 +87,9 @@ verify() {
     fi
 }
 
-for i in $(seq "$KILLS"); do
+for ((i = 1; killed < KILLS && i <= 2 * KILLS; i++)); do # a run that ended before its kill does not count
     launch "$i"
-    printf -v pause '0.%03d' $((RANDOM % 500))
+    pause=$(awk -v w="$wall" -v r=$RANDOM 'BEGIN {printf "%.3f", w / 6 * r / 32768}')
     sleep "$pause"
     case $((i % 3)) in
         1) wait_for '.snap_*.tmp.*' ;;
@@ -99,12 +103,12 @@ for i in $(seq "$KILLS"); do
     verify "$i"
 done
 reached=$(find "$R" -name 'snap_*.h5' | sort | tail -1)
-echo "# $killed runs killed: $midsnap while writing a snapshot, $midck while writing checkpoint.h5; $from_ck restarts from checkpoint.h5; the killed runs reached ${reached##*/}"
-check "at least 20 of the $KILLS runs were killed, not finished ($killed)" [ "$killed" -ge 20 ]
+echo "# pauses up to $wall / 6 s; $killed runs killed: $midsnap while writing a snapshot, $midck while writing checkpoint.h5; $from_ck restarts from checkpoint.h5; the killed runs reached ${reached##*/}"
+check "$KILLS runs killed (at least 20), not finished ($killed in $((i - 1)) starts)" [ "$killed" -ge "$KILLS" -a "$killed" -ge 20 ]
 check "kills landed while a snapshot was written ($midsnap) and while checkpoint.h5 was ($midck)" \
     [ "$midsnap" -ge 1 -a "$midck" -ge 1 ]
 check "after every kill each snapshot is complete and equal to the uninterrupted run's ($bad bad of $checked)" \
-    [ "$checked" -ge 10 -a "$bad" -eq 0 ]
+    [ "$checked" -ge 5 -a "$bad" -eq 0 ]
 check "after every kill checkpoint.h5 is readable ($ck_bad bad of $ck_checked)" [ "$ck_checked" -ge 1 -a "$ck_bad" -eq 0 ]
 
 # the last restart, from the newest complete snapshot, runs to the end
