@@ -3,7 +3,10 @@
 #include "fileio.h"
 #include "log.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,17 +54,60 @@ int vres_out_begin(vres_outfile *o, const char *path)
     return 0;
 }
 
+/* Flush what the file or directory path holds to the storage device (fsync). 0, or -1 with
+ * errno set. */
+static int sync_path(const char *path, int is_dir)
+{
+    int fd = open(path, O_RDONLY | (is_dir ? O_DIRECTORY : 0));
+    if (fd < 0) return -1;
+    int rc = fsync(fd), err = errno;
+    close(fd);
+    errno = err;
+    return rc;
+}
+
 int vres_out_commit(vres_outfile *o)
 {
+    /* the data on the device before the name points at it, and the new name on the device
+       before the caller goes on: a crash or power loss leaves the old file or the new one */
+    if (sync_path(o->tmp, 0) != 0) {
+        vres_error("%s: cannot write: %s", o->path, strerror(errno));
+        vres_out_abort(o);
+        return -1;
+    }
     if (rename(o->tmp, o->path) != 0) {
         vres_error("%s: cannot rename from %s: %s", o->path, o->tmp, strerror(errno));
         vres_out_abort(o);
         return -1;
     }
+    const char *slash = strrchr(o->tmp, '/'); /* vres_out_begin's name: always "DIR/.NAME.tmp.PID" */
+    char *dir = vres_xasprintf("%.*s", slash > o->tmp ? (int)(slash - o->tmp) : 1, o->tmp);
+    int bad = sync_path(dir, 1) != 0 && errno != EINVAL; /* EINVAL: a file system that cannot sync directories */
+    if (bad) vres_error("%s: written, but its directory %s cannot be synced: %s", o->path, dir, strerror(errno));
+    free(dir);
     free(o->tmp);
     free(o->path);
     o->tmp = o->path = NULL;
-    return 0;
+    return bad ? -1 : 0;
+}
+
+int vres_out_sweep(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    int removed = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        const char *t = e->d_name[0] == '.' ? strstr(e->d_name, ".tmp.") : NULL;
+        char *end;
+        long pid = t ? strtol(t + 5, &end, 10) : 0;
+        if (!t || pid <= 0 || *end || t == e->d_name) continue;
+        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH) continue; /* its writer may still be at work */
+        char *path = vres_xasprintf("%s/%s", dir, e->d_name);
+        removed += unlink(path) == 0;
+        free(path);
+    }
+    closedir(d);
+    return removed;
 }
 
 void vres_out_abort(vres_outfile *o)

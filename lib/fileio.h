@@ -15,10 +15,16 @@ typedef struct vres_outfile {
 /* Prepare an atomic write of path: checks the directory exists and is writable and
  * chooses the temporary name. Returns 0, or -1 after printing why (naming path). */
 int vres_out_begin(vres_outfile *o, const char *path);
-/* Rename the temporary file to the final name. Returns 0, or -1 after printing why. */
+/* Sync the temporary file to the storage device, rename it to the final name and sync the
+ * directory (so that after a crash, even a power loss, the final name holds the old file or
+ * the complete new one). Returns 0, or -1 after printing why. */
 int vres_out_commit(vres_outfile *o);
 /* Remove the temporary file (after a failure) and free the names. */
 void vres_out_abort(vres_outfile *o);
+
+/* Remove the temporaries ("DIR/.NAME.tmp.PID") that writers killed before their rename left in
+ * dir: those whose process is gone. Returns how many were removed. */
+int vres_out_sweep(const char *dir);
 
 /* Read a whole file ("-" = stdin) into a new buffer (NUL-terminated beyond *len).
  * Returns 0, or -1 after printing why (naming path). */

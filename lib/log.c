@@ -9,6 +9,8 @@
 
 const char *vres_progname = "vres";
 int vres_verbosity = 0;
+static char *held;             /* buffer taking the first held error (vres_error_hold); NULL: print */
+static unsigned long held_len; /* its size (bytes) */
 
 /* Print one prefixed line on stderr. */
 static void emit(const char *tag, const char *fmt, va_list ap)
@@ -18,11 +20,19 @@ static void emit(const char *tag, const char *fmt, va_list ap)
     fputc('\n', stderr);
 }
 
+void vres_error_hold(char *buf, unsigned long len)
+{
+    held = len ? buf : NULL;
+    held_len = len;
+    if (held) held[0] = 0;
+}
+
 void vres_error(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    emit("", fmt, ap);
+    if (!held) emit("", fmt, ap);
+    else if (!held[0]) vsnprintf(held, held_len, fmt, ap);
     va_end(ap);
 }
 
@@ -56,6 +66,7 @@ void vres_debug(const char *fmt, ...)
 /* Report an allocation failure and stop: nothing sensible can continue. */
 static void oom(unsigned long n)
 {
+    held = NULL; /* the last message of the process: never held */
     vres_error("out of memory allocating %lu bytes", n);
     exit(1);
 }

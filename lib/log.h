@@ -10,6 +10,11 @@ extern int vres_verbosity;
 
 /* Print "prog: message" on stderr, always (errors). */
 void vres_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Hold the error messages that follow: the first one is formatted into buf (len bytes, without
+ * the "prog: " prefix) instead of being printed, the rest are dropped, until
+ * vres_error_hold(NULL, 0) prints normally again. For a caller that folds a callee's message
+ * into its own single message. */
+void vres_error_hold(char *buf, unsigned long len);
 /* Print "prog: warning: message" unless quiet. */
 void vres_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Print "prog: message" unless quiet (progress, notes). */

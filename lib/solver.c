@@ -307,7 +307,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
             else anchor_walls(s, set, &m, t);
         }
         if (rc == VRES_RUN_OK && (stop_asked || (ckpt_s > 0 && vres_run_wall_now() - clk.last_ckpt >= ckpt_s))) {
-            if (vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+            if (vres_run_checkpoint(s, set, c, r, f, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
             else if (stop_asked) {
                 vres_error("interrupted at t = %.6g s, step %ld: state written to %s/checkpoint.h5; continue with "
                            "vres-run --restart %s/checkpoint.h5", t, step, f->dir, f->dir);
@@ -318,7 +318,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     }
     vres_run_progress(c, &clk, s->time, t, step, dt, 1);
     double tp = vres_prof_now();
-    if (rc == VRES_RUN_OK && vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+    if (rc == VRES_RUN_OK && vres_run_checkpoint(s, set, c, r, f, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
     vres_prof_add(&set->prof, VRES_PROF_OUTPUT, tp);
     set->prof.loop_s = vres_run_wall_now() - clk.start, set->prof.steps = step - step_start;
     if (rc == VRES_RUN_OK)
@@ -402,7 +402,8 @@ static int open_ledger(run_files *f, const char *dir)
     int fresh = access(path, F_OK) != 0;
     f->ledger = fopen(path, "a");
     if (!f->ledger) vres_error("%s: cannot write: %s", path, strerror(errno));
-    else if (fresh) fputs(vres_couple_ledger_header, f->ledger);
+    else setvbuf(f->ledger, NULL, _IONBF, 0); /* one write per line: a killed run leaves whole lines */
+    if (f->ledger && fresh) fputs(vres_couple_ledger_header, f->ledger);
     free(path);
     return f->ledger ? 0 : -1;
 }
@@ -415,20 +416,19 @@ static int write_profile(const vres_prof *p, const char *dir)
     for (int ph = 0; ph < VRES_PROF_N; ph++)
         vres_info("  %-10s %9.4g s %5.1f%% %10.4g us", vres_prof_name(ph), p->s[ph],
                   p->loop_s > 0 ? 100 * p->s[ph] / p->loop_s : 0, p->steps > 0 ? 1e6 * p->s[ph] / p->steps : 0);
-    char *path = vres_xasprintf("%s/profile.tsv", dir), *tmp = vres_xasprintf("%s/.profile.tsv.tmp", dir);
-    FILE *out = fopen(tmp, "w");
-    int rc = out ? 0 : -1;
-    if (out) {
-        vres_prof_write(p, out);
-        if (fclose(out) != 0 || rename(tmp, path) != 0) rc = -1;
-    }
-    if (rc != 0) {
-        vres_error("%s: cannot write: %s", path, strerror(errno));
-        remove(tmp);
-    }
+    char *path = vres_xasprintf("%s/profile.tsv", dir);
+    vres_outfile of;
+    int rc = vres_out_begin(&of, path);
     free(path);
-    free(tmp);
-    return rc;
+    if (rc != 0) return -1;
+    FILE *out = fopen(of.tmp, "w");
+    if (out) vres_prof_write(p, out);
+    if (!out || fclose(out) != 0) {
+        vres_error("%s: cannot write: %s", of.path, strerror(errno));
+        vres_out_abort(&of);
+        return -1;
+    }
+    return vres_out_commit(&of);
 }
 
 /* Check, pick the device, prepare the run directory and its table, then run the time loop. */
@@ -491,13 +491,14 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
 
     char *tsvpath = vres_xasprintf("%s/run.tsv", o->rundir);
     int fresh = access(tsvpath, F_OK) != 0;
-    run_files f = {o->rundir, fopen(tsvpath, "a"), NULL, NULL};
+    run_files f = {o->rundir, fopen(tsvpath, "a"), NULL, NULL, o->restart_from};
     if (!f.tsv) {
         vres_error("%s: cannot write: %s", tsvpath, strerror(errno));
         free(tsvpath);
         free_set(&set, 1);
         return VRES_RUN_FAIL;
     }
+    setvbuf(f.tsv, NULL, _IONBF, 0); /* one write per line: a killed run leaves whole lines */
     if (fresh)
         fprintf(f.tsv, "# time_s\tstep\tdt_s\tn_fluid\tn_wall\tmass_fluid_kg\tmax_speed_m_s\trho_min_kg_m3\t"
                        "rho_max_kg_m3\twall_s\tparticle_steps_per_s\tn_excluded\tpairs\tinteractions_per_s\n");

@@ -27,6 +27,8 @@ typedef struct vres_run_opts {
                                run's, else auto */
     const char *vres_flux;  /* --vres-flux: how interface segments measure mass (vres_couple_flux_parse);
                                NULL: VRES_FLUX, else the restarted run's, else the default */
+    const char *restart_from; /* the snapshot a restart continues (its path, named in the command that
+                                 continues the run after a failed write); NULL for a new run */
     int profile;            /* --profile: print the time per phase of the step, write RUNDIR/profile.tsv */
 } vres_run_opts;
 

@@ -125,8 +125,71 @@ static int write_snapshot(vres_store *s, const run_cfg *c, const run_resume *r, 
     return vres_store_write(s, path);
 }
 
+/* The path of the run's newest complete snapshot (RUNDIR/snap_NNNNN.h5 numbered r->next_snap - 1
+ * where it exists, else the snapshot the run continues), newly allocated; NULL when there is none. */
+static char *newest_snapshot(const run_files *f, const run_resume *r)
+{
+    if (r->next_snap > 0) {
+        char *p = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
+        if (access(p, R_OK) == 0) return p;
+        free(p);
+    }
+    return f->from && strcmp(f->from, "-") ? vres_xstrdup(f->from) : NULL; /* stdin cannot be read again */
+}
+
+/* Stop the run at time t, step `step` after a failed write of one of its files: one message, what
+ * the writer said (why, naming the file) and the command that continues the run from its newest
+ * complete snapshot. Returns -1. */
+static int stop_unwritten(const run_cfg *c, const run_resume *r, const run_files *f, const char *why, double t,
+                          long step)
+{
+    char *from = newest_snapshot(f, r);
+    const char *slash = from ? strrchr(from, '/') : NULL;
+    int other_dir = from && !(slash && strlen(f->dir) == (size_t)(slash - from) && !strncmp(from, f->dir, slash - from));
+    if (t >= c->tmax * (1 - 1e-12))
+        vres_error("%s: the run reached its end time t = %.6g s, step %ld, and its snapshots are complete", why, t, step);
+    else if (from)
+        vres_error("%s: the run stops at t = %.6g s, step %ld, its snapshots intact up to %s: make room and continue "
+                   "it with vres-run --restart %s%s%s", why, t, step, from, from, other_dir ? " -o " : "",
+                   other_dir ? f->dir : "");
+    else
+        vres_error("%s: the run stops at t = %.6g s, step %ld, before its first snapshot: make room, remove %s and "
+                   "run it again", why, t, step, f->dir);
+    free(from);
+    return -1;
+}
+
+/* The size of table file t (bytes; 0 for none), for table_rollback. */
+static off_t table_size(FILE *t)
+{
+    struct stat st;
+    return t && fstat(fileno(t), &st) == 0 ? st.st_size : 0;
+}
+
+/* Cut table file t (unbuffered, appended to) back to size bytes: the lines of an output whose
+ * snapshot could not be written go, so that no line names a snapshot that is not there. */
+static void table_rollback(FILE *t, off_t size)
+{
+    if (t && ftruncate(fileno(t), size) != 0) vres_warn("cannot cut a table back to %lld bytes: %s", (long long)size,
+                                                        strerror(errno));
+}
+
+/* Write the store's state as path (write_snapshot) without printing: a failure's message goes
+ * into why (len bytes), for the one stop_unwritten prints. 0 or -1. */
+static int write_held(vres_store *s, const run_cfg *c, const run_resume *r, const char *path, double t, long step,
+                      char *why, size_t len)
+{
+    vres_error_hold(why, len);
+    int rc = write_snapshot(s, c, r, path, t, step);
+    vres_error_hold(NULL, 0);
+    if (rc && !why[0]) snprintf(why, len, "%s: cannot write", path);
+    return rc;
+}
+
 /* Write snapshot number r->next_snap, its run.tsv line and, coupled, its ledger.tsv lines from
- * the backends' state. 0, or -1 after printing why. */
+ * the backends' state. The lines go first, so that a run killed at any moment leaves no snapshot
+ * without its lines (a restart cuts the lines after its snapshot); when the snapshot cannot be
+ * written they are cut again. 0, or -1 after printing why and how to continue. */
 int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, const run_files *f,
                     run_clock *clk, double t, long step, double dt)
 {
@@ -136,31 +199,40 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     size_t pairs = 0, n = 0;
     for (size_t k = 0; k < set->n; k++) pairs += set->b[k].count_pairs(&set->b[k]), n += set->b[k].n;
     if (download_all(s, set) != 0) return -1;
+    off_t tsv0 = table_size(f->tsv), ledger0 = table_size(f->ledger);
+    char why[600];
     if (set->couple) {
         /* the ledger line first: the first report fixes the start's total mass (run_mass0),
            which the snapshot must hold so that a restart from it measures the drift alike */
         vres_couple_report(set->couple, s, set->dt, f->ledger, t, step);
         if (f->ledger && ferror(f->ledger)) {
-            vres_error("%s/ledger.tsv: write failed", f->dir);
-            return -1;
+            snprintf(why, sizeof why, "%s/ledger.tsv: cannot write: %s", f->dir, strerror(errno));
+            table_rollback(f->ledger, ledger0);
+            return stop_unwritten(c, r, f, why, t, step);
         }
         vres_couple_save(set->couple, s);
     }
-    r->next_snap++;
-    char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
-    int rc = write_snapshot(s, c, r, path, t, step);
-    free(path);
-    if (rc) return -1;
     out_stats st = stats(s);
     /* interactions: ordered pairs within 2h, once per force evaluation (two per Symplectic step) */
     double passes = c->verlet ? 1 : 2;
-    fprintf(f->tsv, "%.9g\t%ld\t%.6g\t%zu\t%zu\t%.9g\t%.6g\t%.7g\t%.7g\t%.3f\t%.4g\t%.0f\t%zu\t%.4g\n", t, step, dt,
-            st.nfluid, st.nwall, st.mass, st.vmax, st.rho_lo, st.rho_hi, now - clk->start,
-            steps_s * (double)n, r->nexcluded, pairs, steps_s * passes * (double)pairs);
-    fflush(f->tsv);
-    if (ferror(f->tsv)) {
-        vres_error("%s/run.tsv: write failed", f->dir);
-        return -1;
+    if (fprintf(f->tsv, "%.9g\t%ld\t%.6g\t%zu\t%zu\t%.9g\t%.6g\t%.7g\t%.7g\t%.3f\t%.4g\t%.0f\t%zu\t%.4g\n", t, step,
+                dt, st.nfluid, st.nwall, st.mass, st.vmax, st.rho_lo, st.rho_hi, now - clk->start,
+                steps_s * (double)n, r->nexcluded, pairs, steps_s * passes * (double)pairs) < 0 ||
+        fflush(f->tsv) != 0) {
+        snprintf(why, sizeof why, "%s/run.tsv: cannot write: %s", f->dir, strerror(errno));
+        table_rollback(f->tsv, tsv0);
+        table_rollback(f->ledger, ledger0);
+        return stop_unwritten(c, r, f, why, t, step);
+    }
+    r->next_snap++;
+    char *path = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
+    int rc = write_held(s, c, r, path, t, step, why, sizeof why);
+    free(path);
+    if (rc) {
+        r->next_snap--;
+        table_rollback(f->tsv, tsv0);
+        table_rollback(f->ledger, ledger0);
+        return stop_unwritten(c, r, f, why, t, step);
     }
     vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3",
                r->next_snap - 1, t, step, dt, st.vmax, st.rho_lo, st.rho_hi);
@@ -169,14 +241,15 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     return 0;
 }
 
-/* Write RUNDIR/checkpoint.h5 (atomically) from the backends' state. 0 or -1. */
-int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
+/* Write RUNDIR/checkpoint.h5 (atomically) from the backends' state. 0, or -1 after printing
+ * why and how to continue. */
+int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const run_files *f,
                         run_clock *clk, double t, long step)
 {
     if (download_all(s, set) != 0) return -1;
     if (set->couple) vres_couple_save(set->couple, s);
-    char *path = vres_xasprintf("%s/checkpoint.h5", dir);
-    int rc = write_snapshot(s, c, r, path, t, step);
+    char *path = vres_xasprintf("%s/checkpoint.h5", f->dir), why[600];
+    int rc = write_held(s, c, r, path, t, step, why, sizeof why) ? stop_unwritten(c, r, f, why, t, step) : 0;
     if (!rc) vres_debug("checkpoint at t = %.6g s, step %ld: %s", t, step, path);
     free(path);
     clk->last_ckpt = vres_run_wall_now();
@@ -246,6 +319,7 @@ static int open_excluded(run_files *f)
     if (!f->excl) vres_error("%s: cannot write: %s", path, strerror(errno));
     free(path);
     if (!f->excl) return -1;
+    setvbuf(f->excl, NULL, _IONBF, 0); /* one write per line: a killed run leaves whole lines */
     if (fseek(f->excl, 0, SEEK_END) == 0 && ftell(f->excl) == 0)
         fprintf(f->excl, "# time_s\tstep\tid\ttype\tmk\tx_m\ty_m\tz_m\tvx_m_s\tvy_m_s\tvz_m_s\trho_kg_m3\treason\n");
     return 0;
@@ -293,9 +367,12 @@ static int exclude_out(vres_store *s, run_set *set, size_t k, const run_cfg *c, 
     vres_info("t = %.6g s, step %ld: %zu fluid particle%s left the simulation domain and %s excluded (id %s%s; "
               "recorded in %s/excluded.tsv)", t, step, nex, nex == 1 ? "" : "s", nex == 1 ? "is" : "are", ids,
               nex > 4 ? ", ..." : "", f->dir);
-    fflush(f->excl);
     int bad = ferror(f->excl) != 0;
-    if (bad) vres_error("%s/excluded.tsv: write failed", f->dir);
+    if (bad) {
+        char why[600];
+        snprintf(why, sizeof why, "%s/excluded.tsv: cannot write: %s", f->dir, strerror(errno));
+        stop_unwritten(c, r, f, why, t, step);
+    }
     if (b->remove(b, b->marks(b)) != 0) bad = 1;
     return bad ? VRES_RUN_FAIL : VRES_RUN_OK;
 }
@@ -330,7 +407,7 @@ int vres_run_after_step(vres_store *s, run_set *set, const run_cfg *c, run_resum
     return VRES_RUN_OK;
 }
 
-/* Keep the lines of text file path that are comments or whose column col (1-based, a step
+/* Keep the whole lines of text file path that are comments or whose column col (1-based, a step
  * number) is at most step; drop the rest (a restart rewrites them). Atomic. 0, or -1 after
  * printing why. A missing file is fine. */
 static int truncate_table(const char *path, int col, long step)
@@ -358,7 +435,8 @@ static int truncate_table(const char *path, int col, long step)
     while (getline(&line, &cap, in) > 0) {
         const char *p = line;
         for (int k = 1; k < col && p; k++) p = strchr(p, '\t') ? strchr(p, '\t') + 1 : NULL;
-        if (line[0] == '#' || (p && strtol(p, NULL, 10) <= step)) fputs(line, o);
+        int whole = strchr(line, '\n') != NULL; /* a line a killed writer cut short goes */
+        if (whole && (line[0] == '#' || (p && strtol(p, NULL, 10) <= step))) fputs(line, o);
     }
     free(line);
     fclose(in);
@@ -368,6 +446,40 @@ static int truncate_table(const char *path, int col, long step)
         return -1;
     }
     return vres_out_commit(&out);
+}
+
+/* Remove from run directory dir (run.tsv at tsv) what a restart from the state at step `step`
+ * with next snapshot number next_snap rewrites: the later snapshots, highest first, then the
+ * later lines of the tables, then snap_last_good.h5. In that order a restart killed half-way
+ * leaves the snapshots numbered without a gap, each with its table lines. 0, or -1 after
+ * printing why. */
+static int trim_for_restart(const char *dir, const char *tsv, long step, int next_snap)
+{
+    int last = next_snap - 1;
+    for (;; last++) { /* the later snapshots: next_snap .. last */
+        char *snap = vres_xasprintf("%s/snap_%05d.h5", dir, last + 1);
+        int there = access(snap, F_OK) == 0;
+        free(snap);
+        if (!there) break;
+    }
+    for (int k = last; k >= next_snap; k--) {
+        char *snap = vres_xasprintf("%s/snap_%05d.h5", dir, k);
+        int gone = unlink(snap) == 0;
+        if (!gone) vres_error("%s: cannot remove: %s", snap, strerror(errno));
+        free(snap);
+        if (!gone) return -1;
+    }
+    char *ex = vres_xasprintf("%s/excluded.tsv", dir), *lg = vres_xasprintf("%s/snap_last_good.h5", dir);
+    char *ld = vres_xasprintf("%s/ledger.tsv", dir);
+    int rc = truncate_table(tsv, 2, step) || truncate_table(ex, 2, step) || truncate_table(ld, 2, step);
+    if (!rc && unlink(lg) == 0) vres_info("removed %s (the restart replaces it)", lg);
+    if (last >= next_snap)
+        vres_info("removed snap_%05d.h5 .. snap_%05d.h5 and the later lines of run.tsv (the restart rewrites them)",
+                  next_snap, last);
+    free(ld);
+    free(ex);
+    free(lg);
+    return rc ? -1 : 0;
 }
 
 /* Make the run directory (and parents) and check it can take the run: a new run needs one
@@ -395,27 +507,9 @@ int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap)
         free(tsv);
         return -1;
     }
-    int rc = 0;
-    if (restart) {
-        char *ex = vres_xasprintf("%s/excluded.tsv", dir), *lg = vres_xasprintf("%s/snap_last_good.h5", dir);
-        char *ld = vres_xasprintf("%s/ledger.tsv", dir);
-        rc = truncate_table(tsv, 2, step) || truncate_table(ex, 2, step) || truncate_table(ld, 2, step);
-        free(ld);
-        if (!rc && unlink(lg) == 0) vres_info("removed %s (the restart replaces it)", lg);
-        int removed = 0;
-        for (int k = next_snap; !rc; k++) {
-            char *snap = vres_xasprintf("%s/snap_%05d.h5", dir, k);
-            int gone = unlink(snap) == 0;
-            free(snap);
-            if (!gone) break;
-            removed++;
-        }
-        if (removed)
-            vres_info("removed snap_%05d.h5 .. snap_%05d.h5 and the later lines of run.tsv (the restart rewrites them)",
-                      next_snap, next_snap + removed - 1);
-        free(ex);
-        free(lg);
-    }
+    int rc = 0, swept = vres_out_sweep(dir);
+    if (swept) vres_info("removed %d temporary file%s that a killed run left in %s", swept, swept == 1 ? "" : "s", dir);
+    if (restart) rc = trim_for_restart(dir, tsv, step, next_snap);
     free(tsv);
     return rc;
 }

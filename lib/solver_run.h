@@ -29,6 +29,8 @@ typedef struct run_files {
     FILE *tsv;          /* run.tsv, open for appending */
     FILE *excl;         /* excluded.tsv, opened at the first exclusion (NULL until then) */
     FILE *ledger;       /* ledger.tsv, open for appending; NULL with one domain */
+    const char *from;   /* the snapshot a restart continues (the newest complete state until the run
+                           writes one); NULL for a new run */
 } run_files;
 
 /* The domains of a run, in the store's order: each one's configuration, the backend that holds
@@ -97,13 +99,15 @@ int vres_run_in_box(const run_cfg *c, const run_dom *dc, const double x[3]);
  * at time t). */
 void vres_run_diagnose(const vres_domain *d, const run_cfg *c, const run_dom *dc, size_t i, long step, double t);
 
-/* Write snapshot number r->next_snap and its run.tsv line from the backends' state. 0, or -1
- * after printing why. */
+/* Write snapshot number r->next_snap and its run.tsv line (ledger.tsv lines, coupled) from the
+ * backends' state; the lines are written first and cut again when the snapshot cannot be. 0, or
+ * -1 after printing why and the command that continues the run. */
 int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, const run_files *f,
                     run_clock *clk, double t, long step, double dt);
 
-/* Write RUNDIR/checkpoint.h5 (atomically) from the backends' state. 0 or -1. */
-int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
+/* Write RUNDIR/checkpoint.h5 (atomically) from the backends' state. 0, or -1 after printing why
+ * and the command that continues the run. */
+int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const run_files *f,
                         run_clock *clk, double t, long step);
 
 /* The progress line on a terminal: rewritten in place at most twice a second while the run

@@ -78,7 +78,7 @@ int main(int argc, char **argv)
                        vres_cli_get(&cli, "threads") ? atoi(vres_cli_get(&cli, "threads")) : 0,
                        cli.output ? cli.output : dirname(snapdir), /* a restart continues in the snapshot's directory */
                        cli.cmdline, restart != NULL, vres_cli_double(&cli, "checkpoint", 300),
-                       vres_cli_get(&cli, "vres-order"), vres_cli_get(&cli, "vres-flux"),
+                       vres_cli_get(&cli, "vres-order"), vres_cli_get(&cli, "vres-flux"), restart,
                        vres_cli_flag(&cli, "profile")};
     vres_store *s = vres_store_read(restart ? restart : cli.pos[0]);
     int rc = s ? vres_solver_run(s, &o) : VRES_RUN_FAIL;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "fileio.h"
@@ -53,6 +54,42 @@ START_TEST(atomic_commit)
     ck_assert_uint_eq(len, 4);
     ck_assert_str_eq((char *)buf, "data");
     free(buf);
+}
+END_TEST
+
+/* Create an empty file dir/name. */
+static void touch(const char *name)
+{
+    char path[160];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fclose(f);
+}
+
+START_TEST(sweep_removes_dead_writers_temporaries)
+{
+    pid_t child = fork(); /* a process that is gone: its pid names a killed writer's temporary */
+    if (child == 0) _exit(0);
+    ck_assert_int_gt(child, 0);
+    ck_assert_int_eq(waitpid(child, NULL, 0), child);
+    char dead[64], live[64], path[160];
+    snprintf(dead, sizeof dead, ".snap_00003.h5.tmp.%ld", (long)child);
+    snprintf(live, sizeof live, ".snap_00004.h5.tmp.%ld", (long)getpid());
+    touch(dead);
+    touch(live);                   /* its writer (this process) is at work: kept */
+    touch("snap_00002.h5");        /* not a temporary */
+    touch(".notes.tmp.x");         /* no pid */
+    ck_assert_int_eq(vres_out_sweep(dir), 1);
+    snprintf(path, sizeof path, "%s/%s", dir, dead);
+    ck_assert(!exists(path));
+    snprintf(path, sizeof path, "%s/%s", dir, live);
+    ck_assert(exists(path));
+    snprintf(path, sizeof path, "%s/snap_00002.h5", dir);
+    ck_assert(exists(path));
+    snprintf(path, sizeof path, "%s/.notes.tmp.x", dir);
+    ck_assert(exists(path));
+    ck_assert_int_eq(vres_out_sweep(dir), 0);
 }
 END_TEST
 
@@ -119,6 +156,7 @@ int main(void)
     tcase_add_checked_fixture(tc, setup, teardown);
     tcase_add_test(tc, atomic_commit);
     tcase_add_test(tc, atomic_abort_leaves_nothing);
+    tcase_add_test(tc, sweep_removes_dead_writers_temporaries);
     tcase_add_test(tc, refuses_bad_directories);
     tcase_add_test(tc, read_missing_file_fails);
     tcase_add_test(tc, mkdirs_nested);
