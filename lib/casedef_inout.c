@@ -26,6 +26,8 @@ typedef struct cd_zone {
     int vmode, rmode;    /* imposevelocity and imposerhop modes (kernels/inout.h) */
     double v;            /* fixed velocity (m/s) */
     double zsurf;        /* imposezsurf's zsurf (m), NAN when not given */
+    int nvt;             /* imposevelocity mode 1: points of <velocitytimes> */
+    double *vt;          /* [2 nvt] their time (s) and velocity (m/s) */
 } cd_zone;
 
 /* The unit vector of v into u; 0, or -1 when v is zero. */
@@ -136,6 +138,34 @@ static int child_int(cd_ctx *c, xmlNodePtr e, const char *name, const char *attr
     return 0;
 }
 
+/* <imposevelocity mode="1"> iv's <velocitytimes> (<timevalue time v>, times increasing) into
+z->vt. */
+static void read_vtimes(cd_ctx *c, xmlNodePtr iv, cd_zone *z)
+{
+    static const char *const kids[] = {"velocitytimes", NULL}, *const tk[] = {"timevalue", NULL},
+                      *const ta[] = {"time", "v", NULL};
+    if (cd_check_children(c, iv, kids)) return; /* velocitytimes2/3, velocityfile*: not implemented */
+    xmlNodePtr vt = cd_child(iv, "velocitytimes");
+    if (!vt) {
+        cd_err(c, iv, "<imposevelocity mode=\"1\"> needs <velocitytimes> (the other forms are not implemented yet)");
+        return;
+    }
+    if (cd_check_children(c, vt, tk)) return;
+    z->vt = vres_xcalloc(2 * (size_t)(cd_count(vt, "timevalue") + 1), sizeof *z->vt);
+    for (xmlNodePtr e = vt->children; e; e = e->next) {
+        if (!cd_is_elem(e)) continue;
+        double *p = &z->vt[2 * z->nvt];
+        cd_check_attrs(c, e, ta);
+        if (cd_num_req(c, e, "time", &p[0]) != 0 || cd_num_req(c, e, "v", &p[1]) != 0) return;
+        if (z->nvt > 0 && !(p[0] > p[-2])) {
+            cd_err(c, e, "<timevalue time=\"%g\"> does not come after the one before (%g s)", p[0], p[-2]);
+            return;
+        }
+        z->nvt++;
+    }
+    if (!z->nvt) cd_err(c, vt, "<velocitytimes> has no <timevalue>");
+}
+
 /* <imposevelocity>, <imposerhop> and <imposezsurf> of zone element e into z. */
 static void read_impose(cd_ctx *c, xmlNodePtr e, cd_zone *z)
 {
@@ -150,10 +180,11 @@ static void read_impose(cd_ctx *c, xmlNodePtr e, cd_zone *z)
             if (!cd_child(iv, "velocity")) cd_err(c, iv, "<imposevelocity mode=\"0\"> needs <velocity v=...>");
             else cd_child_num(c, iv, "velocity", "v", 0, &z->v);
         } else if (z->vmode == 2) cd_check_children(c, iv, NULL);
+        else if (z->vmode == 1) read_vtimes(c, iv, z);
         else
             cd_err(c, iv, "<imposevelocity mode=\"%d\"> (%s) is not implemented yet: vres-run imposes mode 0 (fixed "
-                          "<velocity>) and 2 (extrapolated)", z->vmode,
-                   z->vmode == 1 ? "a velocity varying in time" : z->vmode == 3 ? "interpolated from a grid" : "unknown");
+                          "<velocity>), 1 (<velocitytimes>) and 2 (extrapolated)", z->vmode,
+                   z->vmode == 3 ? "interpolated from a grid" : "unknown");
     } else cd_err(c, e, "<inoutzone> has no <imposevelocity>");
     if (ir) {
         cd_check_attrs(c, ir, ma);
@@ -288,6 +319,13 @@ static void put_zone(vres_store *s, const cd_zone *z, int k, long line)
     PUT("velocity", 1, &z->v);
     PUT("zsurf", 1, &z->zsurf);
     PUT("line", 1, &ln);
+    const double nvt = z->nvt;
+    PUT("vtimes", 1, &nvt);
+    for (int j = 0; j < z->nvt; j++) {
+        char what[32];
+        snprintf(what, sizeof what, "vtime_%d", j);
+        PUT(what, 2, &z->vt[2 * j]);
+    }
 #undef PUT
 }
 
@@ -325,5 +363,6 @@ void cd_read_inout(cd_ctx *c, xmlNodePtr inout, vres_store *s)
         for (k = 0; k < n; k++) put_zone(s, &zs[k], k + 1, xmlGetLineNo(zs[k].node));
         cd_debug(c, inout, "%d inlet/outlet zone%s resolved into the parameters inout_Z*", n, n == 1 ? "" : "s");
     }
+    for (k = 0; k < n; k++) free(zs[k].vt);
     free(zs);
 }

@@ -66,6 +66,7 @@ struct vres_couple {
     const vres_body **track; /* [ndom] the body each domain's box follows (the store's), NULL entries for boxes that
                                 stand still; NULL when no box moves */
     vres_inout *io;       /* the inlet/outlet zones (solver_inout.c), NULL when none */
+    double t0;            /* the store's time when the coupling was opened (s) */
 };
 
 double vres_couple_wall(const vres_couple *C)
@@ -188,6 +189,7 @@ vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restart
     C->d = vres_xcalloc(s->ndomains, sizeof *C->d);
     C->next_id = vres_store_next_id(s);
     C->mass0 = restarted ? vres_params_get(&s->params, "run_mass0", -1) : -1;
+    C->t0 = s->time;
     C->fresh = restarted;
     /* the flux: --vres-flux, else VRES_FLUX in the environment, else the restarted run's, else
        the default (vres_couple_flux_parse) */
@@ -398,7 +400,10 @@ int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
     }
     double t0 = vres_run_wall_now();
     int rc = C->ndom > 1 ? buffers(C, set, 0) : 0;
-    if (C->io) vres_inout_impose(C->io, &set->b[0]);
+    if (C->io) {
+        vres_inout_time(C->io, t);
+        vres_inout_impose(C->io, &set->b[0]);
+    }
     C->wall += vres_run_wall_now() - t0;
     return rc;
 }
@@ -445,12 +450,14 @@ static int classify_domains(vres_couple *C, run_set *set, int births)
     return 0;
 }
 
-/* The exchange of a single domain's inlet/outlet zones (solver_inout.c) after a step of dt (s):
+/* The exchange of a single domain's inlet/outlet zones (solver_inout.c) after a step of dt (s)
+ * ending at t (s):
  * the same sequence as the domains' below, the zones' state in place of the donors'. 0 or -1. */
-static int zones_exchange(vres_couple *C, run_set *set, double dt)
+static int zones_exchange(vres_couple *C, run_set *set, double t, double dt)
 {
     double t0 = vres_run_wall_now();
     vres_backend *b = &set->b[0];
+    vres_inout_time(C->io, t);
     if (b->sort(b, 0) != 0 || vres_inout_exchange(C->io, b, dt, &C->next_id) != 0 || b->sort(b, 0) != 0) return -1;
     vres_inout_impose(C->io, b);
     C->fresh = 1;
@@ -463,7 +470,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     (void)c, (void)t;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
-    if (C->io) return zones_exchange(C, set, dt);
+    if (C->io) return zones_exchange(C, set, t, dt);
     double t0 = vres_run_wall_now();
     track_move(C, t); /* the boxes that follow a body where it is at the new time */
     /* the crossing count reads the step's start positions: only then must they follow the sort */
@@ -493,6 +500,7 @@ int vres_couple_start(run_set *set, const run_cfg *c)
     if (!C) return uncoupled(set);
     if (C->io) {
         vres_backend *b = &set->b[0];
+        vres_inout_time(C->io, C->t0);
         if (b->sort(b, 0) != 0 || vres_inout_start(C->io, b, &C->next_id) != 0) return -1;
         C->fresh = 1;
         return 0;

@@ -30,6 +30,8 @@ typedef struct inout_zone {
     float *rho;             /* [nseg] the zone's density there at the last update (kg/m^3) */
     float *vel;             /* [3 nseg] its velocity there (m/s) */
     uint8_t *state;         /* [nseg] VRES_SEG_FLUX (no gate: the zone's state is given) */
+    int nvt;                /* imposevelocity mode 1: points of the velocity's time series (0: none) */
+    double *vt;             /* [2 nvt] their time (s) and velocity (m/s) */
     vres_couple_ledger L;   /* what the zone did to particles since the run began */
 } inout_zone;
 
@@ -85,9 +87,22 @@ static int zone_read(const vres_store *s, const run_cfg *c, int k, inout_zone *z
     z->gz = sqrt(c->g[0] * c->g[0] + c->g[1] * c->g[1] + c->g[2] * c->g[2]);
     zn->line = (int)line[0];
     z->depth = zn->layers * s->dom[0].dp;
+    if (z->vmode == 1) { /* a time series: the kernels see a fixed velocity, set each step (vres_inout_time) */
+        const double *nv = zparam(s, k, "vtimes", 1, &bad);
+        zn->nvt = nv ? (int)nv[0] : 0;
+        zn->vt = vres_xcalloc(2 * (size_t)(zn->nvt > 0 ? zn->nvt : 1), sizeof *zn->vt);
+        for (int j = 0; j < zn->nvt && !bad; j++) {
+            char what[32];
+            snprintf(what, sizeof what, "vtime_%d", j);
+            const double *p = zparam(s, k, what, 2, &bad);
+            if (p) zn->vt[2 * j] = p[0], zn->vt[2 * j + 1] = p[1];
+        }
+        if (bad || zn->nvt < 1) return -1;
+        z->vmode = VRES_INOUT_V_FIXED;
+    }
     /* what vres-gencase checked, checked again: a store may come from elsewhere */
     if (zn->layers < 1 || z->input < 0 || z->input > 2 || (int)opt[2] != 0 ||
-        (z->vmode != VRES_INOUT_V_FIXED && z->vmode != VRES_INOUT_V_EXTRAP) || z->rmode < 0 || z->rmode > 2 ||
+        (z->vmode != VRES_INOUT_V_FIXED && z->vmode != VRES_INOUT_V_EXTRAP && z->vmode != 1) || z->rmode < 0 || z->rmode > 2 ||
         !(z->len1 > 0) || (s->dim == 3 && !(z->len2 > 0))) {
         vres_error("inlet/outlet zone %d (case line %d): layers %d, inputtreatment %d, refilling %g, imposevelocity "
                    "mode %d, imposerhop mode %d, extent %g x %g m: not a zone vres-run runs (vres-case(5))", k, zn->line,
@@ -197,9 +212,23 @@ void vres_inout_close(vres_inout *Z)
     for (int k = 0; k < Z->nz; k++) {
         inout_zone *zn = &Z->zone[k];
         free(zn->pos), free(zn->normal), free(zn->area), free(zn->mass), free(zn->rho), free(zn->vel), free(zn->state);
+        free(zn->vt);
     }
     free(Z->zone);
     free(Z);
+}
+
+void vres_inout_time(vres_inout *Z, double t)
+{
+    for (int k = 0; k < Z->nz; k++) {
+        inout_zone *zn = &Z->zone[k];
+        if (!zn->nvt) continue;
+        const double *p = zn->vt;
+        int j = 0;
+        while (j + 1 < zn->nvt && p[2 * (j + 1)] <= t) j++;
+        if (j + 1 >= zn->nvt || t <= p[0]) zn->z.v = t <= p[0] ? p[1] : p[2 * j + 1]; /* held beyond the ends */
+        else zn->z.v = p[2 * j + 1] + (p[2 * j + 3] - p[2 * j + 1]) * (t - p[2 * j]) / (p[2 * j + 2] - p[2 * j]);
+    }
 }
 
 /* The domain of backend b as the zones' extrapolation donor (b sorted). */

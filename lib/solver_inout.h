@@ -31,6 +31,9 @@ void vres_inout_close(vres_inout *Z);
  * *next_id on), then every inlet particle takes its zone's state. Sorts b. 0, or -1 after
  * printing why. */
 int vres_inout_start(vres_inout *Z, vres_backend *b, uint64_t *next_id);
+/* The zones' state at time t (s): a velocity given as a time series (imposevelocity mode 1)
+ * takes its value at t, linear between the series' points and held beyond its ends. */
+void vres_inout_time(vres_inout *Z, double t);
 /* Every inlet particle takes its zone's state (b sorted: the extrapolation reads its fluid). */
 void vres_inout_impose(vres_inout *Z, vres_backend *b);
 /* After a step of dt (s), b sorted at the new positions: the segments accumulate the imposed

@@ -63,9 +63,23 @@ expect_err 1 "refill\.xml:$line: <refilling value=\"1\"> \(below zsurf\) is not 
     "$GEN" "$T/refill.xml" -o "$T/out/case.h5"
 nothing_in "$T/out" "refilling 1: nothing written"
 
-sed 's|<imposevelocity mode="2" />|<imposevelocity mode="1"><velocitytimes><timevalue time="0" v="1" /></velocitytimes></imposevelocity>|' "$CASE" >"$T/vtime.xml"
-line=$(grep -n '<imposevelocity mode="1">' "$T/vtime.xml" | cut -d: -f1)
-bad "velocity time series refused by name" "vtime\.xml:$line: <imposevelocity mode=\"1\"> \(a velocity varying in time\) is not implemented yet" "$T/vtime.xml"
+sed 's|<imposevelocity mode="2" />|<imposevelocity mode="1"><velocitytimes><timevalue time="0" v="0" /><timevalue time="1" v="-1" /></velocitytimes></imposevelocity>|' "$CASE" >"$T/vtime.xml"
+expect 0 "a velocity time series (<velocitytimes>) resolves" "$GEN" -q "$T/vtime.xml" -o "$T/vtime.h5"
+info=$("$BIN/vres-info" "$T/vtime.h5")
+check "its two points are kept (inout_Z2_vtimes 2, inout_Z2_vtime_1 = 1 -1)" \
+    [ "$(param inout_Z2_vtimes)" = 2 -a "$(param inout_Z2_vtime_1)" = "1 -1" ]
+
+sed 's|<imposevelocity mode="2" />|<imposevelocity mode="1"><velocityfile file="v.csv" /></imposevelocity>|' "$CASE" >"$T/vfile.xml"
+line=$(grep -n '<velocityfile' "$T/vfile.xml" | cut -d: -f1)
+bad "velocity from a file refused by name" "vfile\.xml:$line: element <velocityfile> is not supported in <imposevelocity>" "$T/vfile.xml"
+
+sed 's|<imposevelocity mode="2" />|<imposevelocity mode="1"><velocitytimes><timevalue time="1" v="0" /><timevalue time="1" v="1" /></velocitytimes></imposevelocity>|' "$CASE" >"$T/vback.xml"
+line=$(grep -n '<velocitytimes>' "$T/vback.xml" | cut -d: -f1)
+bad "a time series going back in time" "vback\.xml:$line: <timevalue time=\"1\"> does not come after the one before \(1 s\)" "$T/vback.xml"
+
+sed 's|<imposevelocity mode="2" />|<imposevelocity mode="3" />|' "$CASE" >"$T/vgrid.xml"
+line=$(grep -n '<imposevelocity mode="3" />' "$T/vgrid.xml" | cut -d: -f1)
+bad "velocity interpolated from a grid refused by name" "vgrid\.xml:$line: <imposevelocity mode=\"3\"> \(interpolated from a grid\) is not implemented yet" "$T/vgrid.xml"
 
 sed 's|<imposerhop mode="0" />|<imposerhop mode="1" />|' "$CASE" >"$T/hydro.xml"
 line=$(grep -n '<imposerhop mode="1" />' "$T/hydro.xml" | cut -d: -f1)

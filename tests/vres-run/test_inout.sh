@@ -61,3 +61,19 @@ check "nothing written for it" [ ! -e "$T/cu" ]
 # the case's check, reduced: dp 0.05 m (8 rows), one flow-through time (2 s)
 expect 0 "channel_inout2d/check --dp 0.05 --tmax 2" "$CASES/channel_inout2d/check" --threads 1 --dp 0.05 --tmax 2 -o "$T/chk"
 check "it reports a pass" grep -q -P '^verdict\tpass$' "$OUT"
+
+# a velocity given as a time series (imposevelocity mode 1, <velocitytimes>): the inlet's
+# particles carry its value at the snapshot's time, linear between the points (0.8 m/s at
+# t = 0, 1.2 m/s at t = 0.4 s: 1 m/s at 0.2 s)
+sed 's|<velocity v="1" units_comment="m/s" />|<velocitytimes><timevalue time="0" v="0.8" /><timevalue time="0.4" v="1.2" /></velocitytimes>|; s|<imposevelocity mode="0">|<imposevelocity mode="1">|' \
+    "$CASE" >"$T/ramp.xml"
+expect 0 "vres-gencase with the inlet's velocity ramped" "$BIN/vres-gencase" -q "$T/ramp.xml" -o "$T/ramp.h5"
+expect 0 "u = 0.8 m/s on the fluid" $PY "$CASES/channel_uniform_vres2d/init_uniform.py" --U 0.8 "$T/ramp.h5"
+expect 0 "run to 0.2 s" "$RUN" -q --threads 1 --tmax 0.2 --tout 0.2 "$T/ramp.h5" -o "$T/r"
+f=$T/r/snap_00001.h5
+t=$(h5dump -a /time "$f" | sed -n 's/^ *(0): //p')
+# the inlet's particles (type 5, x < 0): their x velocities, one value when the zone imposes one
+vx=$(paste <(values /Domains/D0/Type "$f") <(values /Domains/D0/Position "$f" | paste - - -) \
+           <(values /Domains/D0/Velocity "$f" | paste - - -) | awk '$1 == 5 && $2 < 0 {printf "%.6f\n", $5}' | sort -u)
+want=$(awk -v t="$t" 'BEGIN {printf "%.6f\n", 0.8 + 0.4 * t / 0.4}')
+check "the inlet's particles all move at the series' value at t = $t s ($want m/s: $vx)" [ "$vx" = "$want" ]
