@@ -521,11 +521,9 @@ static void ledger_names(int k, char *nn, char *mn, size_t len)
     snprintf(mn, len, "run_ledger_m_D%d", k);
 }
 
-void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L)
+void vres_couple_ledger_get(const vres_store *s, const char *nn, const char *mn, vres_couple_ledger *L)
 {
     memset(L, 0, sizeof *L);
-    char nn[64], mn[64];
-    ledger_names(k, nn, mn, sizeof nn);
     const vres_param *pn = vres_params_find(&s->params, nn), *pm = vres_params_find(&s->params, mn);
     if (!pn || !pm || pn->n != VRES_EV_COUNT || pm->n != VRES_EV_COUNT) return;
     for (int e = 1; e < VRES_EV_COUNT; e++) {
@@ -534,6 +532,22 @@ void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L)
     }
     L->created = (size_t)pn->v[0];
     L->created_m = pm->v[0];
+}
+
+void vres_couple_ledger_put(vres_store *s, const char *nn, const char *mn, const vres_couple_ledger *L)
+{
+    double vn[VRES_EV_COUNT], vm[VRES_EV_COUNT];
+    vn[0] = (double)L->created, vm[0] = L->created_m; /* slot 0 (VRES_EV_NONE) holds the creations */
+    for (int e = 1; e < VRES_EV_COUNT; e++) vn[e] = (double)L->n[e], vm[e] = L->m[e];
+    vres_params_set(&s->params, nn, VRES_EV_COUNT, vn, "", "run");
+    vres_params_set(&s->params, mn, VRES_EV_COUNT, vm, "kg", "run");
+}
+
+void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L)
+{
+    char nn[64], mn[64];
+    ledger_names(k, nn, mn, sizeof nn);
+    vres_couple_ledger_get(s, nn, mn, L);
 }
 
 void vres_couple_save(const vres_couple *C, vres_store *s)
@@ -545,13 +559,9 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
             s->iface[cd->src[j]].mass[cd->srci[j]] = cd->mass[j];
             s->iface[cd->src[j]].crossed[cd->srci[j]] = cd->crossed[j];
         }
-        double vn[VRES_EV_COUNT], vm[VRES_EV_COUNT];
-        vn[0] = (double)cd->L.created, vm[0] = cd->L.created_m; /* slot 0 (VRES_EV_NONE) holds the creations */
-        for (int e = 1; e < VRES_EV_COUNT; e++) vn[e] = (double)cd->L.n[e], vm[e] = cd->L.m[e];
         char nn[64], mn[64];
         ledger_names(k, nn, mn, sizeof nn);
-        vres_params_set(&s->params, nn, VRES_EV_COUNT, vn, "", "run");
-        vres_params_set(&s->params, mn, VRES_EV_COUNT, vm, "kg", "run");
+        vres_couple_ledger_put(s, nn, mn, &cd->L);
     }
     if (C->io) vres_inout_save(C->io, s);
     vres_params_set1(&s->params, "run_mass0", C->mass0, "kg", "run");

@@ -68,6 +68,11 @@ int vres_couple_start(run_set *set, const run_cfg *c);
 /* Put the segments' accumulated masses, the ledger, the start's total mass and the next free
  * id into the store (before a snapshot is written). */
 void vres_couple_save(const vres_couple *C, vres_store *s);
+/* A ledger from store s's parameters nn (counts, slot 0 the creations) and mn (masses); zero
+ * when absent. */
+void vres_couple_ledger_get(const vres_store *s, const char *nn, const char *mn, vres_couple_ledger *L);
+/* Put ledger L into s's parameters nn and mn (origin "run"). */
+void vres_couple_ledger_put(vres_store *s, const char *nn, const char *mn, const vres_couple_ledger *L);
 /* Domain k's ledger from the store's parameters (zero when absent). */
 void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L);
 

@@ -163,10 +163,7 @@ static int zone_resume(const vres_store *s, inout_zone *zn)
     memcpy(zn->mass, f->mass, zn->nseg * sizeof *zn->mass);
     char nn[64], mn[64];
     ledger_names(zn->z.id, nn, mn, sizeof nn);
-    const vres_param *pn = vres_params_find(&s->params, nn), *pm = vres_params_find(&s->params, mn);
-    if (!pn || !pm || pn->n != VRES_EV_COUNT || pm->n != VRES_EV_COUNT) return 0;
-    for (int e = 1; e < VRES_EV_COUNT; e++) zn->L.n[e] = (size_t)pn->v[e], zn->L.m[e] = pm->v[e];
-    zn->L.created = (size_t)pn->v[0], zn->L.created_m = pm->v[0];
+    vres_couple_ledger_get(s, nn, mn, &zn->L);
     return 0;
 }
 
@@ -374,12 +371,8 @@ void vres_inout_save(const vres_inout *Z, vres_store *s)
             memset(f->crossed, 0, zn->nseg * sizeof *f->crossed);
         }
         memcpy(f->mass, zn->mass, zn->nseg * sizeof *f->mass);
-        double vn[VRES_EV_COUNT], vm[VRES_EV_COUNT];
-        vn[0] = (double)zn->L.created, vm[0] = zn->L.created_m; /* slot 0 (VRES_EV_NONE) holds the creations */
-        for (int e = 1; e < VRES_EV_COUNT; e++) vn[e] = (double)zn->L.n[e], vm[e] = zn->L.m[e];
         char nn[64], mn[64];
         ledger_names(zn->z.id, nn, mn, sizeof nn);
-        vres_params_set(&s->params, nn, VRES_EV_COUNT, vn, "", "run");
-        vres_params_set(&s->params, mn, VRES_EV_COUNT, vm, "kg", "run");
+        vres_couple_ledger_put(s, nn, mn, &zn->L);
     }
 }
