@@ -434,7 +434,7 @@ VRES_HD static inline void vres_couple_classify_one(size_t i, const vres_region 
 {
     const int t = type[i];
     event[i] = VRES_EV_NONE;
-    if (!vres_type_acts_fluid(t)) return;
+    if (!vres_type_acts_fluid(t) || vres_type_is_inlet(t)) return; /* inlets: their zone's (inout.h) */
     int j;
     const int where = vres_region_classify(reg, nreg, k, &pos[3 * i], dim, &j);
     if (where == VRES_REGION_OUT) {

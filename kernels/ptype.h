@@ -12,7 +12,9 @@
  *            its own rates are discarded and it is advected with its current velocity;
  *   walls    fixed, moving (prescribed motion) and floating particles: DBC or mDBC boundary
  *            particles, whose density alone the continuity equation (or mDBC) sets;
- *   inlet    particles of an inlet/outlet zone (not run yet: the solver refuses them). */
+ *   inlet    particles of an inlet/outlet zone (inout.h): like buffer particles a fluid neighbour
+ *            whose own rates are discarded and which is advected with its velocity, but their
+ *            state is imposed by the zone (or extrapolated from the fluid beside it). */
 #ifndef VRES_KERNELS_PTYPE_H
 #define VRES_KERNELS_PTYPE_H
 
@@ -38,6 +40,19 @@ VRES_HD static inline int vres_type_is_buffer(int t)
     return t == VRES_PTYPE_BUFFER;
 }
 
+/* 1 for a particle of an inlet/outlet zone. */
+VRES_HD static inline int vres_type_is_inlet(int t)
+{
+    return t == VRES_PTYPE_INLET;
+}
+
+/* 1 for a particle whose state something other than the equations of motion sets (buffer:
+ * the coupling; inlet: its zone): its own rates are discarded, it moves with its velocity. */
+VRES_HD static inline int vres_type_is_imposed(int t)
+{
+    return t == VRES_PTYPE_BUFFER || t == VRES_PTYPE_INLET;
+}
+
 /* 1 for a wall particle of any kind (fixed, moving, floating). */
 VRES_HD static inline int vres_type_is_wall(int t)
 {
@@ -56,13 +71,13 @@ VRES_HD static inline int vres_type_is_moving(int t)
     return t == VRES_PTYPE_MOVING;
 }
 
-/* 1 when a particle of type t is a fluid neighbour of the particles around it (fluid or
- * buffer): it enters their sums as fluid (pressure, viscosity with the fluid's coefficient,
+/* 1 when a particle of type t is a fluid neighbour of the particles around it (fluid, buffer
+ * or inlet): it enters their sums as fluid (pressure, viscosity with the fluid's coefficient,
  * density diffusion, mDBC ghost sums), never as a wall. Every other type counts as a wall
  * neighbour. */
 VRES_HD static inline int vres_type_acts_fluid(int t)
 {
-    return t == VRES_PTYPE_FLUID || t == VRES_PTYPE_BUFFER;
+    return t == VRES_PTYPE_FLUID || t == VRES_PTYPE_BUFFER || t == VRES_PTYPE_INLET;
 }
 
 #endif

@@ -220,7 +220,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                                              double *visc, const int ddt, const int walls, const int viscosity,
                                              const int shift, double *shiftv)
 {
-    if (vres_type_is_buffer(type[a])) {
+    if (vres_type_is_imposed(type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
         if (shift) {
             vres_cell_range bnb[27];
@@ -304,7 +304,7 @@ VRES_HD static inline void vres_sph_predict_one(size_t i, const uint8_t *type, c
                                                 float *vel, float *rho, double dt, double rhop0)
 {
     double dt05 = 0.5 * dt;
-    if (vres_type_is_buffer(type[i])) {
+    if (vres_type_is_imposed(type[i])) {
         vres_sph_advect_buffer(i, pos0, vel, pos, dt05);
         return;
     }
@@ -329,7 +329,7 @@ VRES_HD static inline void vres_sph_correct_one(size_t i, const uint8_t *type, c
                                                 const float *rho0, const double *ace, const double *ar, double *pos,
                                                 float *vel, float *rho, double dt, double rhop0)
 {
-    if (vres_type_is_buffer(type[i])) {
+    if (vres_type_is_imposed(type[i])) {
         vres_sph_advect_buffer(i, pos0, vel, pos, dt);
         return;
     }
@@ -357,7 +357,7 @@ VRES_HD static inline void vres_sph_verlet_one(size_t i, const uint8_t *type, do
                                                float *velm1, float *rhom1, const double *ace, const double *ar,
                                                double dt, int euler, double rhop0)
 {
-    if (vres_type_is_buffer(type[i])) {
+    if (vres_type_is_imposed(type[i])) {
         vres_sph_advect_buffer(i, pos, vel, pos, dt);
         for (int k = 0; k < 3; k++) velm1[3 * i + k] = vel[3 * i + k];
         rhom1[i] = rho[i];
@@ -522,7 +522,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
                                                                double *shiftv, const int ddt, const int walls,
                                                                const int viscosity, const int shift)
 {
-    if (vres_type_is_buffer(P->type[a])) {
+    if (vres_type_is_imposed(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
         if (shift) vres_sph_shift_sums(a, nb, m, P->x, NULL, P->z, 1, P->rho, P->mass, P->type, C, walls, shiftv);
         return;
@@ -798,7 +798,7 @@ VRES_HD static inline void vres_shift_one(size_t i, const uint8_t *type, const f
                                           double coef_h, double tfs, int dim, double maxdist)
 {
     double *s = &shiftv[4 * i];
-    if (!vres_type_acts_fluid(type[i]) || s[0] != s[0]) { /* walls; NaN: cancelled */
+    if (!vres_type_acts_fluid(type[i]) || vres_type_is_inlet(type[i]) || s[0] != s[0]) { /* walls, inlets; NaN: cancelled */
         s[0] = s[1] = s[2] = 0;
         return;
     }

@@ -195,6 +195,9 @@ void cd_read_vres(cd_ctx *c, xmlNodePtr vres, vres_store *s);
 void cd_clip_boxes(cd_ctx *c, vres_store *s);
 /* Read execution/special (gauges, inout) into s->gauges_xml / s->inout_xml. */
 void cd_read_special(cd_ctx *c, xmlNodePtr special, vres_store *s);
+/* Resolve <inout>'s zones into s's parameters inout_Z<k>_* (casedef_inout.c), refusing what
+ * vres-run does not run by name and line; s holds the drawn particles and the domain. */
+void cd_read_inout(cd_ctx *c, xmlNodePtr inout, vres_store *s);
 /* Note which mkbounds are floating or moving (before drawing, so walls get their type). */
 void cd_scan_bodies(cd_ctx *c, xmlNodePtr floatings, xmlNodePtr motion);
 /* Read <floatings> and <motion> into s->body once the root domain's particles exist: mass,

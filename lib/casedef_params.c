@@ -699,6 +699,7 @@ void cd_read_special(cd_ctx *c, xmlNodePtr special, vres_store *s)
          * #expressions evaluated, for the tools that use it (vres-probe, vres-run). */
         *slot = dump(c, e);
         cd_debug(c, e, "<%s> kept in the store (%zu bytes)", n, strlen(*slot));
+        if (slot == &s->inout_xml) cd_read_inout(c, e, s);
     }
 }
 

@@ -18,6 +18,7 @@
 #include "log.h"
 #include "preflight.h"
 #include "solver_couple.h"
+#include "solver_inout.h"
 #include "solver_int.h"
 #include "solver_motion.h"
 #include "solver_run.h"
@@ -325,7 +326,10 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s%s", t, step - step_start,
                   vres_run_wall_now() - clk.start, r->next_snap - nsnap0, f->dir,
                   r->nexcluded > 0 ? " (particles excluded: see excluded.tsv)" : "");
-    if (rc == VRES_RUN_OK && set->couple) {
+    if (rc == VRES_RUN_OK && set->couple && set->n == 1)
+        vres_info("inlet/outlet zones: %.3g s, %.1f%% of the time loop", vres_couple_wall(set->couple),
+                  100 * vres_couple_wall(set->couple) / fmax(vres_run_wall_now() - clk.start, 1e-9));
+    else if (rc == VRES_RUN_OK && set->couple) {
         const double pc = 100 / fmax(vres_run_wall_now() - clk.start, 1e-9); /* percent of the time loop per second */
         const vres_couple_parts cp = vres_couple_wall_parts(set->couple);
         vres_info("coupling of the %zu domains: %.3g s, %.1f%% of the time loop (interpolation %.1f%%, flux %.1f%%, "
@@ -458,16 +462,20 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }
-    /* the coupling of several domains runs on the CPU backend only, for now: --device auto
-       takes the CPU for it, --device cuda is refused before anything is written */
-    if (set.n > 1 && dev == VRES_DEV_CUDA) {
+    /* the coupling of several domains and inlet/outlet zones run on the CPU backend only, for
+       now: --device auto takes the CPU for them, --device cuda is refused before anything is
+       written */
+    const int nzones = vres_inout_count(s);
+    if ((set.n > 1 || nzones > 0) && dev == VRES_DEV_CUDA) {
+        char what[128];
+        if (set.n > 1) snprintf(what, sizeof what, "%zu domains: the coupling of variable resolution", set.n);
+        else snprintf(what, sizeof what, "%d inlet/outlet zone%s: the zones", nzones, nzones == 1 ? "" : "s");
         if (o->device && !strcmp(o->device, "cuda")) {
-            vres_error("%zu domains: the CUDA backend does not run the coupling of variable resolution yet; use "
-                       "--device cpu", set.n);
+            vres_error("%s: the CUDA backend does not run them yet; use --device cpu", what);
             free_set(&set, 0);
             return VRES_RUN_FAIL;
         }
-        vres_info("%zu domains: the coupling of variable resolution runs on the CPU backend: using the CPU", set.n);
+        vres_info("%s run on the CPU backend: using the CPU", what);
         dev = VRES_DEV_CPU;
     }
     if (o->threads > 0) omp_set_num_threads(o->threads);
@@ -483,7 +491,17 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 1);
         return VRES_RUN_FAIL;
     }
+    if (nzones > 0 && !set.b[0].inout_classify) {
+        vres_error("%d inlet/outlet zone%s: the %s backend does not run them yet; use --device cpu", nzones,
+                   nzones == 1 ? "" : "s", set.b[0].name);
+        free_set(&set, 1);
+        return VRES_RUN_FAIL;
+    }
     set.couple = vres_couple_open(s, &c, o->restart, o->vres_order, o->vres_flux);
+    if (nzones > 0 && !set.couple) { /* vres_couple_open said why */
+        free_set(&set, 1);
+        return VRES_RUN_FAIL;
+    }
     announce(s, &set, &c, o, dev);
     if (o->tmax > 0) vres_params_set1(&s->params, "TimeMax", c.tmax, "s", "set");
     if (o->tout > 0) vres_params_set1(&s->params, "TimeOut", c.tout, "s", "set");

@@ -29,6 +29,7 @@ static const char *const known_params[] = {
 static int is_known(const char *name)
 {
     if (!strncmp(name, "run_ledger_", 11)) return 1; /* the coupling's ledger, one per domain (solver_couple.c) */
+    if (!strncmp(name, "inout_", 6) || !strncmp(name, "run_inout_", 10)) return 1; /* zones (solver_inout.c) */
     for (int i = 0; known_params[i]; i++)
         if (!strcmp(known_params[i], name)) return 1;
     return 0;
@@ -145,9 +146,9 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
     dc->nwall = count[VRES_FIXED] + dc->nmoving;
     /* a sub-domain may start dry (a refinement box where the flow arrives later) */
     if (!dc->nfluid && s->ndomains == 1) vres_error("the store has no fluid particles: nothing to run"), *bad = 1;
-    for (int t = 0; t < VRES_NTYPES; t++) /* buffers only where a coupling gives them their state */
+    for (int t = 0; t < VRES_NTYPES; t++) /* buffers only where a coupling gives them their state, inlets a zone */
         if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && !(t == VRES_BUFFER && s->ndomains > 1) &&
-            count[t])
+            !(t == VRES_INLET && c->nzones > 0) && count[t])
             vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
                        count[t], vres_ptype_name(t)), *bad = 1;
     /* a box that follows a body (lib/track.h) moves with a prescribed motion only */
@@ -273,6 +274,7 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
         return -1;
     }
     c->dim = s->dim;
+    c->nzones = (int)vres_params_get(&s->params, "inout_zones", 0);
     set->n = s->ndomains;
     set->dom = vres_xcalloc(set->n, sizeof *set->dom);
     set->b = vres_xcalloc(set->n, sizeof *set->b);
@@ -281,7 +283,13 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     for (size_t k = 0; k < set->n; k++)
         if (read_domain(s, c, k, &set->dom[k], &bad) != 0) return -1;
     if (check_bodies(s) != 0) bad = 1;
-    if (s->inout_xml) vres_error("inlet/outlet zones (<inout>): not implemented yet"), bad = 1;
+    if (c->nzones > 0 && s->ndomains > 1)
+        vres_error("%d inlet/outlet zone%s in a store of %zu domains: zones with variable resolution are not "
+                   "implemented yet (run the case at one resolution: vres-partition --single)", c->nzones,
+                   c->nzones == 1 ? "" : "s", s->ndomains), bad = 1;
+    else if (s->inout_xml && c->nzones <= 0)
+        vres_error("the store keeps an <inout> element but no resolved zone (parameters inout_*): make it again with "
+                   "this vres-gencase"), bad = 1;
 
     c->rho0 = need(s, "rhop0", &bad);
     c->gamma = need(s, "gamma", &bad);
@@ -379,8 +387,10 @@ char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu)
     char dev[96];
     if (gpu) snprintf(dev, sizeof dev, "%s", gpu);
     else snprintf(dev, sizeof dev, "cpu-openmp(%d threads)", c->threads);
+    char zones[48] = "";
+    if (c->nzones > 0) snprintf(zones, sizeof zones, " inout(%d zone%s)", c->nzones, c->nzones == 1 ? "" : "s");
     char minf[48] = "";
     if (c->min_fluid > 0) snprintf(minf, sizeof minf, " minfluidstop(%g)", c->min_fluid);
-    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s %s%s %s%s", c->dim, c->gamma, visc,
-                          walls, moving, ddt, shift, per, step, minf, dev, c->general ? " general-loop" : "");
+    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s%s %s%s %s%s", c->dim, c->gamma, visc,
+                          walls, moving, ddt, shift, per, zones, step, minf, dev, c->general ? " general-loop" : "");
 }

@@ -14,6 +14,7 @@
  * with the total fluid mass and its drift at each output (vres-run(1)). With one domain every
  * entry point does nothing. */
 #include "solver_couple.h"
+#include "solver_inout.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -64,6 +65,8 @@ struct vres_couple {
     int order;            /* order of the buffer interpolation: 1, 2 or VRES_COUPLE_ORDER_AUTO (2 from coarser donors) */
     const vres_body **track; /* [ndom] the body each domain's box follows (the store's), NULL entries for boxes that
                                 stand still; NULL when no box moves */
+    vres_inout *io;       /* the inlet/outlet zones (solver_inout.c), NULL when none */
+    double t0;            /* the store's time when the coupling was opened (s) */
 };
 
 double vres_couple_wall(const vres_couple *C)
@@ -82,7 +85,7 @@ static void collect_segments(const vres_store *s, int k, couple_dom *cd)
 {
     size_t n = 0;
     for (size_t f = 0; f < s->niface; f++)
-        if (s->iface[f].recv == k) n += s->iface[f].n;
+        if (s->iface[f].recv == k && !s->iface[f].zone) n += s->iface[f].n;
     cd->nseg = n;
     size_t m = n ? n : 1;
     cd->pos = vres_xcalloc(3 * m, sizeof *cd->pos);
@@ -102,7 +105,7 @@ static void collect_segments(const vres_store *s, int k, couple_dom *cd)
     size_t j = 0;
     for (size_t f = 0; f < s->niface; f++) {
         const vres_iface *I = &s->iface[f];
-        if (I->recv != k) continue;
+        if (I->recv != k || I->zone) continue; /* an inlet/outlet zone's: solver_inout.c */
         for (size_t i = 0; i < I->n; i++, j++) {
             memcpy(&cd->pos[3 * j], &I->pos[3 * i], 3 * sizeof(double));
             memcpy(&cd->normal[3 * j], &I->normal[3 * i], 3 * sizeof(double));
@@ -174,17 +177,19 @@ int vres_couple_flux_parse(const char *name)
 vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order,
                               const char *flux)
 {
-    if (s->ndomains < 2) return NULL;
+    if (s->ndomains < 2 && vres_inout_count(s) <= 0) return NULL;
     vres_couple *C = vres_xcalloc(1, sizeof *C);
     C->ndom = (int)s->ndomains;
     C->dim = s->dim;
     C->rho0 = c->rho0;
     C->reg = vres_xcalloc(s->ndomains, sizeof *C->reg);
-    memcpy(C->reg, s->region, s->ndomains * sizeof *C->reg);
+    if (s->region) memcpy(C->reg, s->region, s->ndomains * sizeof *C->reg);
+    else C->reg[0].parent = -1; /* one domain: the root, fluid everywhere */
     C->donors = vres_xcalloc(s->ndomains, sizeof *C->donors);
     C->d = vres_xcalloc(s->ndomains, sizeof *C->d);
     C->next_id = vres_store_next_id(s);
     C->mass0 = restarted ? vres_params_get(&s->params, "run_mass0", -1) : -1;
+    C->t0 = s->time;
     C->fresh = restarted;
     /* the flux: --vres-flux, else VRES_FLUX in the environment, else the restarted run's, else
        the default (vres_couple_flux_parse) */
@@ -218,6 +223,12 @@ vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restart
     }
     track_open(C, s);
     track_move(C, s->time);
+    int bad = 0;
+    C->io = vres_inout_open(s, c, restarted, &bad);
+    if (bad) {
+        vres_couple_close(C);
+        return NULL;
+    }
     return C;
 }
 
@@ -232,6 +243,7 @@ void vres_couple_close(vres_couple *C)
         free(cd->pos0), free(cd->normal0);
     }
     free(C->track);
+    vres_inout_close(C->io);
     free(C->d);
     free(C->donors);
     free(C->reg);
@@ -258,20 +270,18 @@ static void count_events(couple_dom *cd, const size_t *n_ev, const double *m_ev)
     }
 }
 
-/* Remove the particles of backend b that the last pass marked, when there are any (n_ev the
- * pass's counts). 0 or -1. */
-static int drop_marked(vres_backend *b, const size_t *n_ev)
+int vres_couple_drop_marked(vres_backend *b, const size_t *n_ev)
 {
     size_t n = 0;
     for (int e = 1; e < VRES_EV_COUNT; e++) n += vres_couple_event_deletes(e) ? n_ev[e] : 0;
     return n ? b->remove(b, b->marks(b)) : 0;
 }
 
-/* 1 when segment j of cd creates a particle of mass m (kg) now: it holds that mass, and the spot
+/* 1 when segment j of S creates a particle of mass m (kg) now: it holds that mass, and the spot
  * where it would be born is free (VRES_SEG_WAIT: not). */
-static int may_create(const couple_dom *cd, size_t j, double m)
+static int may_create(const vres_segments *S, size_t j, double m)
 {
-    return cd->mass[j] >= m && cd->state[j] != VRES_SEG_WAIT;
+    return S->mass[j] >= m && S->state[j] != VRES_SEG_WAIT;
 }
 
 /* CAPPED and BALANCED: after a segment update, what domain k's segments fed by each donor hold
@@ -311,36 +321,43 @@ static void balance(couple_dom *cd, int ndom, int capped)
     }
 }
 
-/* New buffer particles of domain k from its segments holding at least its particle mass m (kg):
- * one per such segment per step, born dp/2 inside it (dp its spacing, m) with the segment's
- * interpolated density and velocity (the buffer pass then sets both). 0 or -1. */
-static int create(vres_couple *C, vres_backend *b, int k, double dp, double m)
+int vres_couple_births(vres_backend *b, const vres_segments *S, size_t nseg, double *crossed, double dp, double m,
+                       int type, int32_t mk, uint64_t *next_id, vres_couple_ledger *L)
 {
-    couple_dom *cd = &C->d[k];
     size_t nnew = 0;
-    for (size_t j = 0; j < cd->nseg; j++) nnew += may_create(cd, j, m);
+    for (size_t j = 0; j < nseg; j++) nnew += may_create(S, j, m);
     if (!nnew) return 0;
     vres_domain add;
     memset(&add, 0, sizeof add);
     add.parent = -1;
     vres_domain_reserve(&add, nnew);
-    for (size_t j = 0; j < cd->nseg; j++) {
-        if (!may_create(cd, j, m)) continue;
+    for (size_t j = 0; j < nseg; j++) {
+        if (!may_create(S, j, m)) continue;
         double x[3];
-        vres_couple_birth(&cd->pos[3 * j], &cd->normal[3 * j], dp, x);
-        size_t i = vres_domain_push(&add, x, VRES_BUFFER, cd->mk);
-        for (int a = 0; a < 3; a++) add.vel[3 * i + a] = cd->vel[3 * j + a];
-        add.rho[i] = cd->rho[j];
+        vres_couple_birth(&S->pos[3 * j], &S->normal[3 * j], dp, x);
+        size_t i = vres_domain_push(&add, x, type, mk);
+        for (int a = 0; a < 3; a++) add.vel[3 * i + a] = S->vel[3 * j + a];
+        add.rho[i] = S->rho[j];
         add.mass_p[i] = m;
-        add.id[i] = C->next_id++;
-        cd->mass[j] -= m;
-        cd->crossed[j] -= m;
-        cd->L.created++;
-        cd->L.created_m += m;
+        add.id[i] = (*next_id)++;
+        S->mass[j] -= m;
+        if (crossed) crossed[j] -= m;
+        L->created++;
+        L->created_m += m;
     }
     int rc = b->append(b, &add);
     vres_domain_free(&add);
     return rc;
+}
+
+/* New buffer particles of domain k from its segments holding at least its particle mass m (kg)
+ * (vres_couple_births). 0 or -1. */
+static int create(vres_couple *C, vres_backend *b, int k, double dp, double m)
+{
+    couple_dom *cd = &C->d[k];
+    vres_segments S = {cd->pos, cd->normal, cd->area, cd->donor, cd->vbox, cd->mass,
+                       cd->rho, cd->vel,    cd->state, C->flux,  cd->dm,   cd->cross};
+    return vres_couple_births(b, &S, cd->nseg, cd->crossed, dp, m, VRES_BUFFER, cd->mk, &C->next_id, &cd->L);
 }
 
 /* With no coupling: nothing for one domain; several domains must never run uncoupled. */
@@ -365,7 +382,7 @@ static int buffers(vres_couple *C, run_set *set, int del)
         C->part.interp += t1 - t0;
         if (!del) continue;
         count_events(&C->d[k], n_ev, m_ev);
-        int rc = drop_marked(&set->b[k], n_ev);
+        int rc = vres_couple_drop_marked(&set->b[k], n_ev);
         C->part.compact += vres_run_wall_now() - t1;
         if (rc != 0) return -1;
     }
@@ -382,7 +399,11 @@ int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
         return 0;
     }
     double t0 = vres_run_wall_now();
-    int rc = buffers(C, set, 0);
+    int rc = C->ndom > 1 ? buffers(C, set, 0) : 0;
+    if (C->io) {
+        vres_inout_time(C->io, t);
+        vres_inout_impose(C->io, &set->b[0]);
+    }
     C->wall += vres_run_wall_now() - t0;
     return rc;
 }
@@ -392,7 +413,7 @@ int vres_couple_shift(run_set *set)
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
     double t0 = vres_run_wall_now();
-    for (int k = 0; k < C->ndom; k++) set->b[k].couple_shift(&set->b[k], C->reg, C->ndom, k);
+    for (int k = 0; C->ndom > 1 && k < C->ndom; k++) set->b[k].couple_shift(&set->b[k], C->reg, C->ndom, k);
     C->wall += vres_run_wall_now() - t0; /* in the total, in none of the parts (it is not interpolation) */
     return 0;
 }
@@ -419,7 +440,7 @@ static int classify_domains(vres_couple *C, run_set *set, int births)
         set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
         count_events(&C->d[k], n_ev, m_ev);
         double t1 = vres_run_wall_now();
-        int rc = drop_marked(&set->b[k], n_ev);
+        int rc = vres_couple_drop_marked(&set->b[k], n_ev);
         double t2 = vres_run_wall_now();
         if (rc == 0 && births) rc = create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass);
         C->part.create += (t1 - t0) + (vres_run_wall_now() - t2);
@@ -429,11 +450,27 @@ static int classify_domains(vres_couple *C, run_set *set, int births)
     return 0;
 }
 
+/* The exchange of a single domain's inlet/outlet zones (solver_inout.c) after a step of dt (s)
+ * ending at t (s):
+ * the same sequence as the domains' below, the zones' state in place of the donors'. 0 or -1. */
+static int zones_exchange(vres_couple *C, run_set *set, double t, double dt)
+{
+    double t0 = vres_run_wall_now();
+    vres_backend *b = &set->b[0];
+    vres_inout_time(C->io, t);
+    if (b->sort(b, 0) != 0 || vres_inout_exchange(C->io, b, dt, &C->next_id) != 0 || b->sort(b, 0) != 0) return -1;
+    vres_inout_impose(C->io, b);
+    C->fresh = 1;
+    C->wall += vres_run_wall_now() - t0;
+    return 0;
+}
+
 int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
 {
     (void)c, (void)t;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
+    if (C->io) return zones_exchange(C, set, t, dt);
     double t0 = vres_run_wall_now();
     track_move(C, t); /* the boxes that follow a body where it is at the new time */
     /* the crossing count reads the step's start positions: only then must they follow the sort */
@@ -461,6 +498,13 @@ int vres_couple_start(run_set *set, const run_cfg *c)
     (void)c;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
+    if (C->io) {
+        vres_backend *b = &set->b[0];
+        vres_inout_time(C->io, C->t0);
+        if (b->sort(b, 0) != 0 || vres_inout_start(C->io, b, &C->next_id) != 0) return -1;
+        C->fresh = 1;
+        return 0;
+    }
     const vres_couple_parts keep = C->part; /* the start is not in wall: nor in its parts */
     if (sort_domains(C, set, 0) != 0 || classify_domains(C, set, 0) != 0 || sort_domains(C, set, 0) != 0 ||
         buffers(C, set, 1) != 0)
@@ -477,11 +521,9 @@ static void ledger_names(int k, char *nn, char *mn, size_t len)
     snprintf(mn, len, "run_ledger_m_D%d", k);
 }
 
-void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L)
+void vres_couple_ledger_get(const vres_store *s, const char *nn, const char *mn, vres_couple_ledger *L)
 {
     memset(L, 0, sizeof *L);
-    char nn[64], mn[64];
-    ledger_names(k, nn, mn, sizeof nn);
     const vres_param *pn = vres_params_find(&s->params, nn), *pm = vres_params_find(&s->params, mn);
     if (!pn || !pm || pn->n != VRES_EV_COUNT || pm->n != VRES_EV_COUNT) return;
     for (int e = 1; e < VRES_EV_COUNT; e++) {
@@ -490,6 +532,22 @@ void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L)
     }
     L->created = (size_t)pn->v[0];
     L->created_m = pm->v[0];
+}
+
+void vres_couple_ledger_put(vres_store *s, const char *nn, const char *mn, const vres_couple_ledger *L)
+{
+    double vn[VRES_EV_COUNT], vm[VRES_EV_COUNT];
+    vn[0] = (double)L->created, vm[0] = L->created_m; /* slot 0 (VRES_EV_NONE) holds the creations */
+    for (int e = 1; e < VRES_EV_COUNT; e++) vn[e] = (double)L->n[e], vm[e] = L->m[e];
+    vres_params_set(&s->params, nn, VRES_EV_COUNT, vn, "", "run");
+    vres_params_set(&s->params, mn, VRES_EV_COUNT, vm, "kg", "run");
+}
+
+void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L)
+{
+    char nn[64], mn[64];
+    ledger_names(k, nn, mn, sizeof nn);
+    vres_couple_ledger_get(s, nn, mn, L);
 }
 
 void vres_couple_save(const vres_couple *C, vres_store *s)
@@ -501,14 +559,11 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
             s->iface[cd->src[j]].mass[cd->srci[j]] = cd->mass[j];
             s->iface[cd->src[j]].crossed[cd->srci[j]] = cd->crossed[j];
         }
-        double vn[VRES_EV_COUNT], vm[VRES_EV_COUNT];
-        vn[0] = (double)cd->L.created, vm[0] = cd->L.created_m; /* slot 0 (VRES_EV_NONE) holds the creations */
-        for (int e = 1; e < VRES_EV_COUNT; e++) vn[e] = (double)cd->L.n[e], vm[e] = cd->L.m[e];
         char nn[64], mn[64];
         ledger_names(k, nn, mn, sizeof nn);
-        vres_params_set(&s->params, nn, VRES_EV_COUNT, vn, "", "run");
-        vres_params_set(&s->params, mn, VRES_EV_COUNT, vm, "kg", "run");
+        vres_couple_ledger_put(s, nn, mn, &cd->L);
     }
+    if (C->io) vres_inout_save(C->io, s);
     vres_params_set1(&s->params, "run_mass0", C->mass0, "kg", "run");
     vres_params_set1(&s->params, "run_next_id", (double)C->next_id, "", "run");
     vres_params_set1(&s->params, "run_vres_order", C->order, "", "run");
@@ -547,8 +602,12 @@ double vres_couple_report(vres_couple *C, const vres_store *s0, const double *dt
         for (size_t j = 0; j < C->d[k].nseg; j++) pend[k] += C->d[k].mass[j];
         bound += (double)C->d[k].nseg * s->dom[k].mass;
     }
-    if (C->mass0 < 0) C->mass0 = total;
-    double drift = C->mass0 > 0 ? (total - C->mass0) / C->mass0 : 0;
+    bound += (double)vres_inout_nseg(C->io) * s->dom[0].mass;
+    /* with inlet/outlet zones the fluid's mass changes by what they exchange with it: the drift
+       is measured against the start's mass plus that (mass0 is the mass before any exchange) */
+    const double net = vres_inout_net(C->io);
+    if (C->mass0 < 0) C->mass0 = total - net;
+    double drift = C->mass0 > 0 ? (total - net - C->mass0) / C->mass0 : 0;
     if (f) {
         for (int k = 0; k < nd; k++) {
             const vres_couple_ledger *L = &C->d[k].L;
@@ -557,10 +616,11 @@ double vres_couple_report(vres_couple *C, const vres_store *s0, const double *dt
                     L->n[VRES_EV_TO_BUFFER], L->n[VRES_EV_DEL_BUFFER], L->m[VRES_EV_DEL_BUFFER], L->n[VRES_EV_DEL_FLUID],
                     L->m[VRES_EV_DEL_FLUID], L->n[VRES_EV_NOSUPPORT], L->m[VRES_EV_NOSUPPORT], pend[k], total, drift);
         }
+        if (C->io) vres_inout_report(C->io, s, f, t, step, total, drift);
         fflush(f);
     }
     free(nf), free(nb), free(mf), free(pend);
-    if (C->mass0 > 0 && fabs(total - C->mass0) > bound)
+    if (C->mass0 > 0 && fabs(total - net - C->mass0) > bound)
         vres_warn("t = %.6g s, step %ld: total fluid mass %.9g kg drifted %+.3g%% since the start, more than one "
                   "particle mass per interface segment (%.3g kg)", t, step, total, 100 * drift, bound);
     return drift;

@@ -20,6 +20,17 @@ typedef struct vres_couple_ledger {
     double created_m;         /* their mass (kg) */
 } vres_couple_ledger;
 
+/* Append to backend b one particle of type `type` (mk, ids from *next_id on) per segment of S
+ * (nseg, host arrays) holding at least m (kg) whose spot is free (not VRES_SEG_WAIT), born
+ * dp/2 inside it (dp in m) with the segment's last density and velocity; each such segment
+ * loses m, and so does crossed[j] when crossed is not NULL; L counts the creations. The one
+ * creation of the coupling's buffers and of the inlet/outlet zones' particles. 0 or -1. */
+int vres_couple_births(vres_backend *b, const vres_segments *S, size_t nseg, double *crossed, double dp, double m,
+                       int type, int32_t mk, uint64_t *next_id, vres_couple_ledger *L);
+/* Remove the particles of backend b that the last pass marked, when any of the pass's counts
+ * n_ev[VRES_EV_COUNT] is of an event that deletes. 0 or -1. */
+int vres_couple_drop_marked(vres_backend *b, const size_t *n_ev);
+
 /* The header line of ledger.tsv (names and units of its columns). */
 extern const char vres_couple_ledger_header[];
 
@@ -57,6 +68,11 @@ int vres_couple_start(run_set *set, const run_cfg *c);
 /* Put the segments' accumulated masses, the ledger, the start's total mass and the next free
  * id into the store (before a snapshot is written). */
 void vres_couple_save(const vres_couple *C, vres_store *s);
+/* A ledger from store s's parameters nn (counts, slot 0 the creations) and mn (masses); zero
+ * when absent. */
+void vres_couple_ledger_get(const vres_store *s, const char *nn, const char *mn, vres_couple_ledger *L);
+/* Put ledger L into s's parameters nn and mn (origin "run"). */
+void vres_couple_ledger_put(vres_store *s, const char *nn, const char *mn, const vres_couple_ledger *L);
 /* Domain k's ledger from the store's parameters (zero when absent). */
 void vres_couple_ledger_load(const vres_store *s, int k, vres_couple_ledger *L);
 

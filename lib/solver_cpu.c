@@ -464,6 +464,24 @@ static void cpu_couple_segments(vres_backend *b, const vres_donor *donors, const
     vres_couple_segment_loop_cpu(nseg, donors, *S, w, dp, dt);
 }
 
+/* Zone z's classification; events counted, deletions marked. */
+static void cpu_inout_classify(vres_backend *b, const vres_inout_zone *z, int first, size_t *n_ev, double *m_ev)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    memset(x->mark, 0, d->n);
+    vres_inout_classify_loop_cpu(d->n, *z, first, d->pos, d->type, x->mark);
+    cpu_count_events(x, n_ev, m_ev);
+}
+
+/* Zone z's state on its inlet particles. */
+static void cpu_inout_impose(vres_backend *b, const vres_inout_zone *z, const vres_donor *D)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_domain *d = x->d;
+    vres_inout_impose_loop_cpu(d->n, *z, *D, d->pos, d->type, d->vel, d->rho);
+}
+
 int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c, const run_dom *dc)
 {
     cpu_ctx *x = vres_xcalloc(1, sizeof *x);
@@ -513,6 +531,8 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     b->couple_buffers = cpu_couple_buffers;
     b->couple_segments = cpu_couple_segments;
     b->couple_shift = cpu_couple_shift;
+    b->inout_classify = cpu_inout_classify;
+    b->inout_impose = cpu_inout_impose;
     b->close = cpu_close;
     return 0;
 }

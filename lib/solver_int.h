@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "../kernels/couple.h"
+#include "../kernels/inout.h"
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
 #include "solver_motion.h"
@@ -49,6 +50,7 @@ typedef struct run_cfg {
     double shift_tfs;     /* ShiftTFS: div r below this marks the free surface (0: no detection) */
     int threads;          /* OpenMP threads used */
     double min_fluid;     /* MinFluidStop: the run stops when the fluid left is below this fraction of the start's */
+    int nzones;           /* inlet/outlet zones (the store's parameter inout_zones; solver_inout.c) */
     int general;          /* 1: run the general loop (every option tested at run time; VRES_LOOP=general) */
 } run_cfg;
 
@@ -180,6 +182,15 @@ typedef struct vres_backend {
      * domain's walls (cells current) for the wall gate; dp is this domain's spacing (m). */
     void (*couple_segments)(struct vres_backend *b, const vres_donor *donors, const vres_segments *S, size_t nseg,
                             double dp, double dt);
+    /* Inlet/outlet zones (solver_inout.c, kernels/inout.h); NULL in a backend that does not run
+     * them (the run then refuses zones). */
+    /* Classify every particle for zone z (first 1: a new run's start): types changed in place,
+     * the events' counts and masses (kg) added to n_ev and m_ev [VRES_EV_COUNT], the marks set
+     * to 1 for the particles to delete. */
+    void (*inout_classify)(struct vres_backend *b, const vres_inout_zone *z, int first, size_t *n_ev, double *m_ev);
+    /* Every inlet particle of zone z takes the zone's state; D is this domain as a donor (cells
+     * current) for the extrapolation. */
+    void (*inout_impose)(struct vres_backend *b, const vres_inout_zone *z, const vres_donor *D);
     /* Free everything the backend holds (b itself is the caller's). */
     void (*close)(struct vres_backend *b);
 } vres_backend;

@@ -165,6 +165,8 @@ typedef struct vres_iface {
     double *mass;   /* [n] mass accumulated and not yet turned into a particle (kg) */
     double *crossed; /* [n] mass the donor's particles brought across the segment, less what it created (kg):
                         what the balanced flux keeps the interface's mass to (solver_couple.c) */
+    int zone;       /* 0 for an interface between two domains; k > 0 for the back of inlet/outlet zone k, whose
+                       state is imposed (donor = recv: the zone's own domain; solver_inout.c) */
 } vres_iface;
 
 /* Everything one store file holds. */

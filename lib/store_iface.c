@@ -143,6 +143,7 @@ static int write_iface(hid_t g, const vres_iface *fc, size_t i)
     rc |= put(ig, "receiving", H5T_STD_I32LE, H5T_NATIVE_INT, -1, &fc->recv);
     rc |= put(ig, "donor", H5T_STD_I32LE, H5T_NATIVE_INT, -1, &fc->donor);
     rc |= put(ig, "count", H5T_STD_U64LE, H5T_NATIVE_ULLONG, -1, &n);
+    if (fc->zone > 0) rc |= put(ig, "zone", H5T_STD_I32LE, H5T_NATIVE_INT, -1, &fc->zone);
     rc |= put_rows(ig, "Position", fc->n, 3, fc->pos);
     rc |= put_rows(ig, "Normal", fc->n, 3, fc->normal);
     rc |= put_rows(ig, "Area", fc->n, 1, fc->area);
@@ -358,8 +359,9 @@ static void read_iface(ectx *e, hid_t g, vres_store *s, size_t i)
         efail(e, "%s: not a group", path);
         return;
     }
-    int recv = -1, donor = -1;
+    int recv = -1, donor = -1, zone = 0;
     unsigned long long n = 0;
+    if (H5Aexists(ig, "zone") > 0) get(e, ig, path, "zone", -1, H5T_NATIVE_INT, &zone);
     get(e, ig, path, "receiving", -1, H5T_NATIVE_INT, &recv);
     get(e, ig, path, "donor", -1, H5T_NATIVE_INT, &donor);
     get(e, ig, path, "count", -1, H5T_NATIVE_ULLONG, &n);
@@ -367,12 +369,16 @@ static void read_iface(ectx *e, hid_t g, vres_store *s, size_t i)
     if (e->bad) {
     } else if (recv < 0 || recv >= nd || donor < 0 || donor >= nd)
         efail(e, "%s: receiving domain %d and donor %d must be domains of the store (0 to %d)", path, recv, donor, nd - 1);
-    else if (s->dom[recv].parent != donor && s->dom[donor].parent != recv)
+    else if (zone < 0 || (zone > 0 && donor != recv))
+        efail(e, "%s: zone %d with receiving domain %d and donor %d: an inlet/outlet zone (zone > 0) is its own "
+                 "domain's (donor = receiving)", path, zone, recv, donor);
+    else if (zone == 0 && s->dom[recv].parent != donor && s->dom[donor].parent != recv)
         efail(e, "%s: domains %d and %d are not parent and child, so they share no interface", path, recv, donor);
     else if (n > IFACE_MAX)
         efail(e, "%s: count %llu is beyond any interface", path, n);
     vres_iface *fc = e->bad ? NULL : vres_store_add_iface(s, recv, donor);
     if (fc) {
+        fc->zone = zone;
         fc->n = (size_t)n;
         fc->pos = get_rows(e, ig, path, "Position", fc->n, 3);
         fc->normal = get_rows(e, ig, path, "Normal", fc->n, 3);

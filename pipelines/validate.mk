@@ -36,7 +36,7 @@ VALIDATE ?= dambreak_front2d:0.02 dambreak_front2d:0.01 hydrostatic_profile2d:0.
             dambreak_lobovsky2d:0.01 ritter2d:0.05 taylor_green2d:0.02 cavity_re1000:0.025 \
             stiff_rest2d: stiff_impact2d: stiff_lowvisc2d: stiff_tinydp2d: \
             stiff_vres_front2d: stiff_vres_dpratio4_2d: stiff_vres_nested3_2d: stiff_vres_corner2d: \
-            stiff_vres_siblings2d: tank_vres3d: dambreak_vres3d:
+            stiff_vres_siblings2d: tank_vres3d: dambreak_vres3d: channel_inout2d:
 
 case_of = $(word 1,$(subst :, ,$(1)))
 dp_of   = $(word 2,$(subst :, ,$(1)))

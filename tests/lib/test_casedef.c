@@ -693,12 +693,18 @@ START_TEST(special_kept)
 {
     vres_store *s = rd(mkcase("", DEF2D, WATER, "",
                               "<special><gauges><swl name=\"g\"><point0 x=\"#Dp*3\" y=\"0\" z=\"0\"/></swl></gauges>"
-                              "<inout><inoutzone/></inout></special>"));
+                              "<inout><inoutzone active=\"false\"/></inout></special>"));
     ck_assert_ptr_nonnull(s);
     ck_assert_ptr_nonnull(strstr(s->gauges_xml, "<swl name=\"g\">"));
     ck_assert_ptr_nonnull(strstr(s->gauges_xml, "x=\"0.30000000000000004\"")); /* #Dp*3 evaluated */
-    ck_assert_ptr_nonnull(strstr(s->inout_xml, "<inoutzone/>"));
+    ck_assert_ptr_nonnull(strstr(s->inout_xml, "<inoutzone active=\"false\"/>"));
+    ck_assert(vres_params_get(&s->params, "inout_zones", 0) == 0); /* kept as text, no zone resolved */
     vres_store_free(s);
+    /* an active zone is resolved (vres-run runs it): one with no face and no velocity is refused */
+    REFUSED(mkcase("", DEF2D, WATER, "", "<special>\n<inout><inoutzone/></inout></special>"),
+            "t.xml:3: <inoutzone> of a 2D case needs <zone2d>", NULL);
+    REFUSED(mkcase("", DEF2D, WATER, "", "<special>\n<inout><inoutzone/></inout></special>"),
+            "t.xml:3: <inoutzone> has no <imposevelocity>", NULL);
     REFUSED(mkcase("", DEF2D, WATER, "", "<special>\n<shifting/></special>"),
             "t.xml:3: element <shifting> is not supported in <special> (supported: gauges, inout)", NULL);
 }
