@@ -1497,6 +1497,19 @@ static void open_failed(rctx *r)
     rerr(r, "damaged or truncated HDF5 file%s%s%s", *why ? " (" : "", why, *why ? ")" : "");
 }
 
+/* Open the file image img (len bytes, kept by the caller until the file is closed) for
+ * reading. Returns the file id, or -1 after reporting. */
+static hid_t open_image(rctx *r, const unsigned char *img, size_t len)
+{
+    if (len == 0) rerr(r, "empty input, not a vres store");
+    else if (!has_signature(img, len, NULL)) rerr(r, "not an HDF5 file, so not a vres store");
+    if (r->bad) return -1;
+    /* read only: HDF5 neither writes to nor frees the image */
+    hid_t f = H5LTopen_file_image((void *)img, len, H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
+    if (f < 0) open_failed(r);
+    return f;
+}
+
 /* Open path for reading: a regular file directly; stdin ("-"), pipes and other streams by
  * reading them into *img (which the caller frees after closing) and opening that image.
  * Returns the file id, or -1 after reporting. */
@@ -1525,12 +1538,7 @@ static hid_t open_store(rctx *r, const char *path, unsigned char **img)
             r->bad = 1; /* vres_read_all said why */
             return -1;
         }
-        if (len == 0) rerr(r, "empty input, not a vres store");
-        else if (!has_signature(*img, len, NULL)) rerr(r, "not an HDF5 file, so not a vres store");
-        if (r->bad) return -1;
-        hid_t f = H5LTopen_file_image(*img, len, H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
-        if (f < 0) open_failed(r);
-        return f;
+        return open_image(r, *img, len);
     }
     hid_t fapl = base_fapl();
     H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
@@ -1540,17 +1548,19 @@ static hid_t open_store(rctx *r, const char *path, unsigned char **img)
     return f;
 }
 
-/* Read a store, whole or header only (see store.h). */
-static vres_store *read_store(const char *path, int header_only)
+/* Read a store, whole or header only (see store.h): from the file path, or when path is NULL
+ * from the image mem (mlen bytes) named name. */
+static vres_store *read_store(const char *path, const unsigned char *mem, size_t mlen, const char *name,
+                              int header_only)
 {
-    rctx r = {strcmp(path, "-") == 0 ? "(stdin)" : path, 0, header_only};
+    rctx r = {path ? (strcmp(path, "-") == 0 ? "(stdin)" : path) : name, 0, header_only};
     no_hdf5_exit_handler();
     H5E_auto2_t efunc;
     void *edata;
     H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    unsigned char *img;
-    hid_t f = open_store(&r, path, &img);
+    unsigned char *img = NULL;
+    hid_t f = path ? open_store(&r, path, &img) : open_image(&r, mem, mlen);
     vres_store *s = NULL;
     if (f >= 0) {
         s = vres_store_new();
@@ -1568,10 +1578,15 @@ static vres_store *read_store(const char *path, int header_only)
 
 vres_store *vres_store_read(const char *path)
 {
-    return read_store(path, 0);
+    return read_store(path, NULL, 0, NULL, 0);
 }
 
 vres_store *vres_store_read_header(const char *path)
 {
-    return read_store(path, 1);
+    return read_store(path, NULL, 0, NULL, 1);
+}
+
+vres_store *vres_store_read_image(const void *img, size_t len, const char *name)
+{
+    return read_store(NULL, img, len, name, 0);
 }
