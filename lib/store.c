@@ -483,6 +483,7 @@ static void put_array(wctx *w, hid_t loc, const char *name, hid_t ftype, hid_t m
         H5Pset_chunk(dcpl, rank, chunk);
         H5Pset_shuffle(dcpl);
         H5Pset_deflate(dcpl, DEFLATE_LEVEL);
+        H5Pset_fletcher32(dcpl); /* last: a damaged chunk is refused before it is inflated */
     }
     hid_t d = H5Dcreate2(loc, name, ftype, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     herr_t e = d < 0 ? -1 : n > 0 ? H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
@@ -752,6 +753,69 @@ static int check_writable(const vres_store *s, const char *path)
     return 0;
 }
 
+/* The file image HDF5's core driver builds, taken over when the file is closed: only then is
+ * the superblock final (H5Fget_file_image of HDF5 1.10 clears its "open for writing" flags in
+ * the copy it returns without updating its checksum, so a file in the 1.8 format or later
+ * taken that way cannot be opened). */
+typedef struct core_image {
+    unsigned char *mem; /* the driver's buffer; ours once kept */
+    size_t size;        /* its allocated size (bytes) */
+    int kept;           /* 1 once the driver handed it over at the file's close */
+} core_image;
+
+/* Image callbacks (H5Pset_file_image_callbacks): allocation through the C library, and the
+ * buffer kept, not freed, when the driver releases it at close. */
+static void *img_malloc(size_t size, H5FD_file_image_op_t op, void *udata)
+{
+    (void)op;
+    core_image *c = udata;
+    c->mem = malloc(size);
+    c->size = c->mem ? size : 0;
+    return c->mem;
+}
+static void *img_memcpy(void *dst, const void *src, size_t size, H5FD_file_image_op_t op, void *udata)
+{
+    (void)op, (void)udata;
+    return memcpy(dst, src, size);
+}
+static void *img_realloc(void *ptr, size_t size, H5FD_file_image_op_t op, void *udata)
+{
+    (void)op;
+    core_image *c = udata;
+    void *p = realloc(ptr, size);
+    if (p) c->mem = p, c->size = size;
+    return p;
+}
+static herr_t img_free(void *ptr, H5FD_file_image_op_t op, void *udata)
+{
+    core_image *c = udata;
+    if (op == H5FD_FILE_IMAGE_OP_FILE_CLOSE && ptr && ptr == c->mem) c->kept = 1;
+    else free(ptr);
+    return 0;
+}
+static void *img_udata_copy(void *udata)
+{
+    return udata; /* shared: the property lists and the file all fill the one core_image */
+}
+static herr_t img_udata_free(void *udata)
+{
+    (void)udata;
+    return 0;
+}
+
+/* Length of the HDF5 file in the image c kept (its superblock's end-of-file address; the buffer
+ * is larger by up to CORE_INCREMENT), or 0 when it holds no version 2 or 3 superblock of 8-byte
+ * addresses at 0. */
+static size_t image_length(const core_image *c)
+{
+    static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+    const unsigned char *m = c->mem;
+    if (!c->kept || c->size < 48 || memcmp(m, sig, 8) != 0 || (m[8] != 2 && m[8] != 3) || m[9] != 8) return 0;
+    uint64_t base = 0, eof = 0;
+    for (int i = 7; i >= 0; i--) base = base << 8 | m[12 + i], eof = eof << 8 | m[28 + i];
+    return base == 0 && eof >= 48 && eof <= c->size ? (size_t)eof : 0;
+}
+
 /* Build the store's HDF5 file image in memory (HDF5's core driver, no backing file); name
  * is the destination for messages. Returns the image (*len bytes), or NULL after printing
  * why. HDF5 never touches the disk: a disk error while HDF5 writes a file leaves it unable
@@ -766,15 +830,22 @@ static unsigned char *build_image(const vres_store *s, const char *name, size_t 
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 
     wctx w = {0};
+    core_image img = {NULL, 0, 0};
+    H5FD_file_image_callbacks_t cb = {img_malloc, img_memcpy, img_realloc, img_free, img_udata_copy,
+                                      img_udata_free, &img};
     hid_t fapl = base_fapl();
     H5Pset_fapl_core(fapl, CORE_INCREMENT, 0);
     H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+    /* The 1.8 file format or later: its superblock, object headers and heaps carry checksums,
+     * so a damaged file is refused when opened instead of being parsed (HDF5 1.10 read
+     * out of bounds in flipped attribute messages of the oldest format). HDF5 1.8.0 and later
+     * read it (vres-store(5)). */
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+    H5Pset_file_image_callbacks(fapl, &cb);
     char core_name[64];
     snprintf(core_name, sizeof core_name, "vres-image-%ld-%u.h5", (long)getpid(), serial++);
-    /* Tracking attribute order gives the root group a version-2 object header, whose dense
-     * attribute storage takes attributes over 64 KiB (a long history). The file format as a
-     * whole stays the oldest one: H5Fget_file_image of HDF5 1.10 returns images with a bad
-     * superblock checksum for the 1.8 format. */
+    /* Tracking attribute order lets dense attribute storage take attributes over 64 KiB (a
+     * long history). */
     hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
     H5Pset_attr_creation_order(fcpl, H5P_CRT_ORDER_TRACKED);
     hid_t f = H5Fcreate(core_name, H5F_ACC_TRUNC, fcpl, fapl);
@@ -782,28 +853,18 @@ static unsigned char *build_image(const vres_store *s, const char *name, size_t 
     H5Pclose(fcpl);
     H5Pclose(fapl);
     write_model(&w, f, s);
-
-    unsigned char *img = NULL;
-    ssize_t n = 0;
-    if (!w.bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) wfail(&w, -1, "the in-memory file (flush)", 0);
-    if (!w.bad) {
-        n = H5Fget_file_image(f, NULL, 0);
-        if (n > 0) {
-            img = vres_xmalloc((size_t)n);
-            if (H5Fget_file_image(f, img, (size_t)n) != n) n = -1;
-        }
-        if (n <= 0) wfail(&w, -1, "the in-memory image", 0);
-    }
     if (f >= 0 && H5Fclose(f) < 0) wfail(&w, -1, "the in-memory file (close)", 0);
+    size_t n = w.bad ? 0 : image_length(&img);
+    if (!w.bad && n == 0) wfail(&w, -1, "the in-memory image", 0);
     H5Eset_auto2(H5E_DEFAULT, efunc, edata);
     if (w.bad) {
         vres_error("%s: cannot write store: %s%s%s%s", name, w.why[0] ? w.why : "HDF5 error",
                    w.what[0] ? " (writing " : "", w.what, w.what[0] ? ")" : "");
-        free(img);
+        if (img.kept) free(img.mem);
         return NULL;
     }
-    *len = (size_t)n;
-    return img;
+    *len = n;
+    return img.mem;
 }
 
 /* Write len bytes of img to the temporary file tmp (messages name the final path).
