@@ -756,7 +756,7 @@ static int check_writable(const vres_store *s, const char *path)
 /* The file image HDF5's core driver builds, taken over when the file is closed: only then is
  * the superblock final (H5Fget_file_image of HDF5 1.10 clears its "open for writing" flags in
  * the copy it returns without updating its checksum, so a file in the 1.8 format or later
- * taken that way cannot be opened). */
+ * taken that way cannot be opened: measured with h5dump). */
 typedef struct core_image {
     unsigned char *mem; /* the driver's buffer; ours once kept */
     size_t size;        /* its allocated size (bytes) */
@@ -804,13 +804,13 @@ static herr_t img_udata_free(void *udata)
 }
 
 /* Length of the HDF5 file in the image c kept (its superblock's end-of-file address; the buffer
- * is larger by up to CORE_INCREMENT), or 0 when it holds no version 2 or 3 superblock of 8-byte
+ * is larger by up to CORE_INCREMENT), or 0 when it holds no version 3 superblock of 8-byte
  * addresses at 0. */
 static size_t image_length(const core_image *c)
 {
     static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
     const unsigned char *m = c->mem;
-    if (!c->kept || c->size < 48 || memcmp(m, sig, 8) != 0 || (m[8] != 2 && m[8] != 3) || m[9] != 8) return 0;
+    if (!c->kept || c->size < 48 || memcmp(m, sig, 8) != 0 || m[8] != 3 || m[9] != 8) return 0;
     uint64_t base = 0, eof = 0;
     for (int i = 7; i >= 0; i--) base = base << 8 | m[12 + i], eof = eof << 8 | m[28 + i];
     return base == 0 && eof >= 48 && eof <= c->size ? (size_t)eof : 0;
@@ -836,11 +836,12 @@ static unsigned char *build_image(const vres_store *s, const char *name, size_t 
     hid_t fapl = base_fapl();
     H5Pset_fapl_core(fapl, CORE_INCREMENT, 0);
     H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-    /* The 1.8 file format or later: its superblock, object headers and heaps carry checksums,
-     * so a damaged file is refused when opened instead of being parsed (HDF5 1.10 read
-     * out of bounds in flipped attribute messages of the oldest format). HDF5 1.8.0 and later
+    /* HDF5 1.10's file format: its superblock, object headers, heaps, B-trees and chunk
+     * indexes carry checksums, so a damaged file is refused when opened instead of being parsed
+     * (HDF5 1.10 read out of bounds in flipped attribute messages of the oldest format, and in
+     * the 1.8 format, whose chunk index has no checksum, in a fuzzed one). HDF5 1.10.0 and later
      * read it (vres-store(5)). */
-    H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST);
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
     H5Pset_file_image_callbacks(fapl, &cb);
     char core_name[64];
     snprintf(core_name, sizeof core_name, "vres-image-%ld-%u.h5", (long)getpid(), serial++);
@@ -1215,6 +1216,17 @@ static size_t group_size(rctx *r, hid_t g)
 /* Root attributes; the format check comes first so a foreign file gets that message. */
 static void read_root(rctx *r, hid_t f, vres_store *s)
 {
+    /* Only the checksummed file format is parsed: HDF5 reads out of bounds in damaged metadata
+     * of the older ones (a flipped-bit store of superblock version 0 under H5Aexists, a fuzzed
+     * one of version 2 whose chunk index pointed at another dataset's chunk under H5Dread). */
+    H5F_info2_t fi;
+    if (H5Fget_info2(f, &fi) < 0) fi.super.version = 0;
+    if (fi.super.version < 3) {
+        rerr(r, "HDF5 file format without checksums (superblock version %u): vres reads stores in HDF5 1.10's "
+             "format, superblock version 3 (an older vres store converts with: h5repack -L FILE NEWFILE)",
+             fi.super.version);
+        return;
+    }
     if (H5Aexists(f, "format") <= 0) {
         rerr(r, "not a vres store (an HDF5 file without the attribute format=\"%s\")", VRES_STORE_FORMAT);
         return;
