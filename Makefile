@@ -111,7 +111,7 @@ FUZZ_OBJ  := $(patsubst lib/%.c,$(B)/fuzz/obj/%.o,$(LIB_C))
 $(B)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz.h $(ASAN_OBJ) | $(B)/fuzz/obj
 	$(CC) $(filter-out -DVRES_HAVE_CUDA -DVRES_HAVE_CUDA_SOLVER,$(CFLAGS)) -O1 $(ASAN_FLAGS) $< tests/fuzz/replay.c \
 	  -o $@ $(ASAN_OBJ) $(filter-out -lcudart,$(LDLIBS))
-$(B)/fuzz/obj/%.o: lib/%.c $(wildcard lib/*.h kernels/*.h) | $(B)/fuzz/obj
+$(B)/fuzz/obj/%.o: lib/%.c $(wildcard lib/*.h kernels/*.h) | $(B)/fuzz/obj fuzz-clang
 	$(CLANG) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link $(FUZZ_SAN) -c $< -o $@
 $(B)/fuzz/libvres-fuzz.a: $(FUZZ_OBJ)
 	rm -f $@ && ar rcs $@ $^
@@ -121,6 +121,9 @@ $(B)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h $(B)/fuzz/libvres-fuzz.a
 $(B)/fuzz/obj/version.o: CFLAGS += -DVRES_VERSION='"$(VERSION)"' -DVRES_GIT='"$(GIT_REV)"' \
   -DVRES_CFLAGS='"fuzz"'
 
+fuzz-clang:
+	@command -v $(CLANG) >/dev/null || { echo "make fuzz needs clang with libFuzzer: ./setup.sh --deps-only" \
+	  "installs clang, libclang-rt-dev and libomp-dev"; exit 1; }
 fuzzers: $(FUZZERS)
 fuzz: $(FUZZERS)
 	FUZZ_S=$(FUZZ_S) VRES_BUILD=$(B) bash tests/fuzz/run.sh $(FUZZ_NAMES)
@@ -161,6 +164,6 @@ install: all
 clean:
 	rm -rf $(B) bin demo
 
-.PHONY: all asan check bench demo install clean fuzz fuzzers
+.PHONY: all asan check bench demo install clean fuzz fuzzers fuzz-clang
 .SECONDARY: $(ASAN_OBJ) $(LIB_OBJ) $(FUZZ_OBJ)
 .DELETE_ON_ERROR:

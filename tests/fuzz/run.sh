@@ -2,8 +2,11 @@
 # tests/fuzz/run.sh NAME... - run the libFuzzer harnesses $VRES_BUILD/fuzz/fuzz_NAME (make fuzz
 # builds them) one after the other, FUZZ_S seconds each (default 60), under nice -n 19, each from
 # its committed corpus tests/fuzz/corpus/NAME plus the inputs it found before in
-# $VRES_BUILD/fuzz/corpus/NAME (where new ones go). A crash, hang (-timeout, 10 s), leak or
-# allocation over 2 GB stops that harness and leaves the input in $VRES_BUILD/fuzz/crash/NAME/.
+# $VRES_BUILD/fuzz/corpus/NAME (where new ones go). A crash, hang, leak or allocation over 2 GB
+# stops that harness and leaves the input in $VRES_BUILD/fuzz/crash/NAME/. A hang is an input
+# running FUZZ_TIMEOUT s (default 60) of wall-clock time: libFuzzer's timer is not CPU time, and
+# at nice 19 on a loaded machine an input of 0.27 s CPU once took 14 s (replay a timeout with
+# the harness and one input, "$VRES_BUILD/fuzz/fuzz_NAME FILE", before calling it a hang).
 # Prints per harness its executions, coverage (cov: edges, ft: features) and corpus size, as
 # libFuzzer's last status line gives them; the log is $VRES_BUILD/fuzz/NAME.log, and each run's line
 # is added to $VRES_BUILD/fuzz/runs.txt with its date (the fuzzing ledger). Exit 1 when a harness failed.
@@ -22,7 +25,7 @@ for name in "$@"; do
     mkdir -p "$B/fuzz/corpus/$name" "$B/fuzz/crash/$name"
     dict=tests/fuzz/$name.dict
     t0=$(date +%s)
-    nice -n 19 "$bin" -max_total_time="$S" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
+    nice -n 19 "$bin" -max_total_time="$S" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb=2048 -malloc_limit_mb=2048 \
         -close_fd_mask=3 -print_final_stats=1 -artifact_prefix="$B/fuzz/crash/$name/" \
         $([ -f "$dict" ] && echo "-dict=$dict") ${FUZZ_OPTS:-} \
         "$B/fuzz/corpus/$name" "tests/fuzz/corpus/$name" >"$B/fuzz/$name.log" 2>&1
