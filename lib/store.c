@@ -35,6 +35,10 @@
 #define DEFLATE_LEVEL 1
 /* Growth step of the in-memory image when writing to stdout (bytes). */
 #define CORE_INCREMENT (16u << 20)
+/* Largest ratio of a particle dataset's size to the bytes it has in the file: deflate expands
+ * at most 1032 times. Checked before the particles are allocated, so that a size in a damaged
+ * or forged file cannot make the reader allocate without bound. */
+#define MAX_INFLATE 1100.0
 /* Largest number of values of a numeric parameter (vres_param.v). */
 #define MAX_PARAM_VALUES 9
 
@@ -1189,6 +1193,9 @@ static void get_array(rctx *r, hid_t loc, const char *name, H5T_class_t cls, siz
         rerr(r, "%s: wrong shape (%s expected)", p, want == 2 ? "count x 3" : "a vector");
     else if (dims[0] != n)
         rerr(r, "%s: %llu rows but the domain's count is %zu", p, (unsigned long long)dims[0], n);
+    else if (!data && (double)n * ncomp * tsize > MAX_INFLATE * (double)H5Dget_storage_size(d))
+        rerr(r, "%s: %zu rows of %zu bytes stored in %llu bytes, more than compression can hold (file damaged)", p,
+             n, (size_t)ncomp * tsize, (unsigned long long)H5Dget_storage_size(d));
     else if (data && n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
         char why[200];
         h5_reason(why);
