@@ -7,7 +7,8 @@
 # running FUZZ_TIMEOUT s (default 60) of wall-clock time: libFuzzer's timer is not CPU time, and
 # at nice 19 on a loaded machine an input of 0.27 s CPU once took 14 s (replay a timeout with
 # the harness and one input, "$VRES_BUILD/fuzz/fuzz_NAME FILE", before calling it a hang).
-# Prints per harness its executions, coverage (cov: edges, ft: features) and corpus size, as
+# Prints per harness its wall and CPU seconds (user + system: at nice 19 on a busy machine the
+# fuzzer gets a fraction of a core), executions, coverage (cov: edges, ft: features) and corpus size, as
 # libFuzzer's last status line gives them; the log is $VRES_BUILD/fuzz/NAME.log, and each run's line
 # is added to $VRES_BUILD/fuzz/runs.txt with its date (the fuzzing ledger). Exit 1 when a harness failed.
 # Extra libFuzzer options: FUZZ_OPTS (e.g. FUZZ_OPTS=-jobs=2).
@@ -18,14 +19,17 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 fail=0
-printf '%-8s %8s %10s %8s %8s %7s  %s\n' harness seconds execs cov ft corpus result
+printf '%-8s %8s %8s %10s %8s %8s %7s  %s\n' harness seconds cpu_s execs cov ft corpus result
 for name in "$@"; do
     bin=$B/fuzz/fuzz_$name
     [ -x "$bin" ] || { echo "$bin: missing (make $bin)"; fail=1; continue; }
     mkdir -p "$B/fuzz/corpus/$name" "$B/fuzz/crash/$name"
     dict=tests/fuzz/$name.dict
     t0=$(date +%s)
-    nice -n 19 "$bin" -max_total_time="$S" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb=2048 -malloc_limit_mb=2048 \
+    rm -f "$B/fuzz/$name.cpu"
+    timer=() # GNU time (package time) gives the CPU seconds where it is installed
+    [ -x /usr/bin/time ] && timer=(/usr/bin/time -f '%U %S' -o "$B/fuzz/$name.cpu")
+    "${timer[@]}" nice -n 19 "$bin" -max_total_time="$S" -timeout="${FUZZ_TIMEOUT:-60}" -rss_limit_mb=2048 -malloc_limit_mb=2048 \
         -close_fd_mask=3 -print_final_stats=1 -artifact_prefix="$B/fuzz/crash/$name/" \
         $([ -f "$dict" ] && echo "-dict=$dict") ${FUZZ_OPTS:-} \
         "$B/fuzz/corpus/$name" "tests/fuzz/corpus/$name" >"$B/fuzz/$name.log" 2>&1
@@ -41,8 +45,9 @@ for name in "$@"; do
         res="FAILED (exit $rc): $(grep -m1 -E 'ERROR|runtime error|SUMMARY' "$B/fuzz/$name.log" | cut -c1-120)"
         fail=1
     fi
-    line=$(printf '%-8s %8s %10s %8s %8s %7s  %s' "$name" $((t1 - t0)) "${execs:-?}" "${cov:-?}" "${ft:-?}" \
-        "${corp:-?}" "$res")
+    cpu=$(awk 'NF == 2 && $1 ~ /^[0-9.]+$/ {printf "%.0f", $1 + $2}' "$B/fuzz/$name.cpu" 2>/dev/null)
+    line=$(printf '%-8s %8s %8s %10s %8s %8s %7s  %s' "$name" $((t1 - t0)) "${cpu:-?}" "${execs:-?}" "${cov:-?}" \
+        "${ft:-?}" "${corp:-?}" "$res")
     echo "$line"
     echo "$(date -u +%FT%TZ -d @"$t0") $line" >>"$B/fuzz/runs.txt"
 done
