@@ -769,6 +769,8 @@ typedef struct core_image {
 
 /* Image callbacks (H5Pset_file_image_callbacks): allocation through the C library, and the
  * buffer kept, not freed, when the driver releases it at close. */
+
+/* image_malloc: a new buffer, which becomes the image's. */
 static void *img_malloc(size_t size, H5FD_file_image_op_t op, void *udata)
 {
     (void)op;
@@ -777,11 +779,13 @@ static void *img_malloc(size_t size, H5FD_file_image_op_t op, void *udata)
     c->size = c->mem ? size : 0;
     return c->mem;
 }
+/* image_memcpy: a plain copy. */
 static void *img_memcpy(void *dst, const void *src, size_t size, H5FD_file_image_op_t op, void *udata)
 {
     (void)op, (void)udata;
     return memcpy(dst, src, size);
 }
+/* image_realloc: the image's buffer grown (or moved). */
 static void *img_realloc(void *ptr, size_t size, H5FD_file_image_op_t op, void *udata)
 {
     (void)op;
@@ -790,6 +794,7 @@ static void *img_realloc(void *ptr, size_t size, H5FD_file_image_op_t op, void *
     if (p) c->mem = p, c->size = size;
     return p;
 }
+/* image_free: kept when the driver releases the image at close, freed otherwise. */
 static herr_t img_free(void *ptr, H5FD_file_image_op_t op, void *udata)
 {
     core_image *c = udata;
@@ -797,10 +802,12 @@ static herr_t img_free(void *ptr, H5FD_file_image_op_t op, void *udata)
     else free(ptr);
     return 0;
 }
+/* udata_copy: the same core_image. */
 static void *img_udata_copy(void *udata)
 {
     return udata; /* shared: the property lists and the file all fill the one core_image */
 }
+/* udata_free: nothing (the core_image lives on build_image's stack). */
 static herr_t img_udata_free(void *udata)
 {
     (void)udata;
