@@ -12,12 +12,18 @@
 
 int vres_out_begin(vres_outfile *o, const char *path)
 {
+    struct stat st;
+    o->direct = stat(path, &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode) || S_ISBLK(st.st_mode));
+    if (o->direct) {
+        o->path = vres_xstrdup(path);
+        o->tmp = vres_xstrdup(path);
+        return 0;
+    }
     o->path = vres_xstrdup(path);
     const char *slash = strrchr(path, '/');
     char *dir = slash ? vres_xasprintf("%.*s", (int)(slash - path) ? (int)(slash - path) : 1, path)
                       : vres_xstrdup(".");
     const char *base = slash ? slash + 1 : path;
-    struct stat st;
     if (!*base) {
         vres_error("%s: output names a directory, not a file", path);
         free(dir);
@@ -53,7 +59,7 @@ int vres_out_begin(vres_outfile *o, const char *path)
 
 int vres_out_commit(vres_outfile *o)
 {
-    if (rename(o->tmp, o->path) != 0) {
+    if (!o->direct && rename(o->tmp, o->path) != 0) {
         vres_error("%s: cannot rename from %s: %s", o->path, o->tmp, strerror(errno));
         vres_out_abort(o);
         return -1;
@@ -66,7 +72,7 @@ int vres_out_commit(vres_outfile *o)
 
 void vres_out_abort(vres_outfile *o)
 {
-    if (o->tmp) unlink(o->tmp);
+    if (o->tmp && !o->direct) unlink(o->tmp);
     free(o->tmp);
     free(o->path);
     o->tmp = o->path = NULL;
