@@ -5,6 +5,7 @@
 #   make bench      throughput table of vres-run (pipelines/bench.sh)
 #   make validate   validation cases at their validation dp (pipelines/validate.mk; long)
 #   make sweep      error-against-run-time sweeps with GNU parallel (pipelines/sweep.mk; long)
+#   make fuzz       build the libFuzzer harnesses (tests/fuzz, clang) and run each FUZZ_S seconds
 #   make demo       generate the shipped cases and export them to VTK under demo/
 #   make install PREFIX=/usr/local
 # Sources are found by wildcard: lib/*.c|*.cc|*.cu -> libvres, tools/vres-*.c -> bin/vres-*,
@@ -94,13 +95,47 @@ $(B)/asan/bin/vres-%: tools/vres-%.c $(ASAN_OBJ) | $(B)/asan/bin
 $(B)/tests/test_%: tests/lib/test_%.c $(LIBVRES) | $(B)/tests
 	$(CC) $(CFLAGS) $< -o $@ $(LIBVRES) $(CHECK_LIBS) $(LDLIBS)
 
-$(B)/obj $(B)/asan/bin $(B)/tests $(BINDIR):
+# Fuzzing harnesses (tests/fuzz/fuzz_*.c, one reader each). make check replays their corpus and
+# regression inputs through replay.c's main() linked with the ASan objects (gcc, no clang needed);
+# make fuzz builds them with clang's libFuzzer under ASan+UBSan and runs each FUZZ_S seconds
+# (tests/fuzz/run.sh: new inputs under $(B)/fuzz/corpus, crashes under $(B)/fuzz/crash).
+FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
+REPLAYS   := $(patsubst %,$(B)/fuzz/replay_%,$(FUZZ_NAMES))
+FUZZERS   := $(patsubst %,$(B)/fuzz/fuzz_%,$(FUZZ_NAMES))
+CLANG     ?= clang
+FUZZ_S    ?= 60
+FUZZ_SAN  := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+FUZZ_CFLAGS = $(filter-out -DVRES_HAVE_CUDA -DVRES_HAVE_CUDA_SOLVER -O2,$(CFLAGS)) -O1 -Wno-unknown-pragmas -Wno-pass-failed
+FUZZ_OBJ  := $(patsubst lib/%.c,$(B)/fuzz/obj/%.o,$(LIB_C))
+
+$(B)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz.h $(ASAN_OBJ) | $(B)/fuzz/obj
+	$(CC) $(filter-out -DVRES_HAVE_CUDA -DVRES_HAVE_CUDA_SOLVER,$(CFLAGS)) -O1 $(ASAN_FLAGS) $< tests/fuzz/replay.c \
+	  -o $@ $(ASAN_OBJ) $(filter-out -lcudart,$(LDLIBS))
+$(B)/fuzz/obj/%.o: lib/%.c $(wildcard lib/*.h kernels/*.h) | $(B)/fuzz/obj fuzz-clang
+	$(CLANG) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link $(FUZZ_SAN) -c $< -o $@
+$(B)/fuzz/libvres-fuzz.a: $(FUZZ_OBJ)
+	rm -f $@ && ar rcs $@ $^
+$(B)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h $(B)/fuzz/libvres-fuzz.a
+	$(CLANG) $(FUZZ_CFLAGS) -fsanitize=fuzzer $(FUZZ_SAN) $< -o $@ $(B)/fuzz/libvres-fuzz.a \
+	  $(PKG_LIBS) -lfftw3 -fopenmp -lm $(if $(HDF5_LIBDIR),-Wl$(comma)-rpath$(comma)$(HDF5_LIBDIR))
+$(B)/fuzz/obj/version.o: CFLAGS += -DVRES_VERSION='"$(VERSION)"' -DVRES_GIT='"$(GIT_REV)"' \
+  -DVRES_CFLAGS='"fuzz"'
+
+fuzz-clang:
+	@command -v $(CLANG) >/dev/null || { echo "make fuzz needs clang with libFuzzer: ./setup.sh --deps-only" \
+	  "installs clang, libclang-rt-dev and libomp-dev"; exit 1; }
+fuzzers: $(FUZZERS)
+fuzz: $(FUZZERS)
+	FUZZ_S=$(FUZZ_S) VRES_BUILD=$(B) bash tests/fuzz/run.sh $(FUZZ_NAMES)
+
+$(B)/obj $(B)/asan/bin $(B)/tests $(B)/fuzz/obj $(BINDIR):
 	mkdir -p $@
 
 asan: $(ASAN_TOOLS)
 
-# The whole test suite: unit tests, tool behaviour tests, ASan runs on bad input.
-check: all asan $(TESTS)
+# The whole test suite: unit tests, tool behaviour tests, ASan runs on bad input, the fuzzing
+# corpus replayed.
+check: all asan $(TESTS) $(REPLAYS)
 	VRES_BUILD=$(B) VRES_BIN=$(abspath $(BINDIR)) bash tests/run
 
 # Throughput table of vres-run (not a test; see pipelines/bench.sh).
@@ -129,6 +164,6 @@ install: all
 clean:
 	rm -rf $(B) bin demo
 
-.PHONY: all asan check bench demo install clean
-.SECONDARY: $(ASAN_OBJ) $(LIB_OBJ)
+.PHONY: all asan check bench demo install clean fuzz fuzzers fuzz-clang
+.SECONDARY: $(ASAN_OBJ) $(LIB_OBJ) $(FUZZ_OBJ)
 .DELETE_ON_ERROR:

@@ -6,7 +6,7 @@
 set -eu
 cd "$(dirname "$0")"
 PKGS="build-essential pkg-config libhdf5-dev hdf5-tools libxml2-dev libvtk9-dev libopenmpi-dev openmpi-bin
-libfftw3-dev parallel gnuplot-nox check git python3-h5py python3-numpy"
+libfftw3-dev parallel gnuplot-nox check git python3-h5py python3-numpy clang libclang-rt-dev libomp-dev"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"

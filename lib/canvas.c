@@ -16,11 +16,12 @@
 #include "log.h"
 
 #define TIE 1e-6                  /* tie tolerance in units of dp: absorbs rounding of positions */
-#define MAX_NODES (1ull << 31)    /* largest lattice accepted (nodes) */
 #define ST_STATE 3u               /* bits of a node byte holding VRES_PAINT_* */
 #define ST_HASN 4u                /* node byte flag: the node has an entry in the normal map */
 #define NM_EMPTY UINT64_MAX       /* key of a free normal-map slot */
 #define MITRE_MAX 4.0             /* longest mitre of a polygon offset, in offsets (bevels sharper corners) */
+
+size_t vres_canvas_max_nodes = (size_t)1 << 31;
 
 /* Classes of a node relative to one shape (see classify functions). */
 enum {
@@ -283,9 +284,9 @@ vres_canvas *vres_canvas_new(int dim, double dp, const double ref[3], const doub
             return NULL;
         }
         double i0 = ceil((pmin[a] - ref[a]) / dp - TIE), i1 = floor((pmax[a] - ref[a]) / dp + TIE);
-        if (fabs(i0) > 1e15 || fabs(i1) > 1e15 || i1 - i0 + 1 > (double)MAX_NODES) {
-            vres_error("geometry definition: %.3g nodes along %c exceed the limit of 2^31 nodes (dp %g is too small "
-                       "for the domain)", i1 - i0 + 1, axn[a], dp);
+        if (fabs(i0) > 1e15 || fabs(i1) > 1e15 || i1 - i0 + 1 > (double)vres_canvas_max_nodes) {
+            vres_error("geometry definition: %.3g nodes along %c exceed the limit of %.3g nodes (dp %g is too small "
+                       "for the domain)", i1 - i0 + 1, axn[a], (double)vres_canvas_max_nodes, dp);
             free(c);
             return NULL;
         }
@@ -299,9 +300,9 @@ vres_canvas *vres_canvas_new(int dim, double dp, const double ref[3], const doub
         c->n[a] = (size_t)(i1 - i0 + 1);
         total *= (double)c->n[a];
     }
-    if (total > (double)MAX_NODES) {
-        vres_error("geometry definition: a lattice of %zu x %zu x %zu = %.3g nodes exceeds the limit of 2^31 nodes (dp %g "
-                   "is too small for the domain)", c->n[0], c->n[1], c->n[2], total, dp);
+    if (total > (double)vres_canvas_max_nodes) {
+        vres_error("geometry definition: a lattice of %zu x %zu x %zu = %.3g nodes exceeds the limit of %.3g nodes (dp "
+                   "%g is too small for the domain)", c->n[0], c->n[1], c->n[2], total, (double)vres_canvas_max_nodes, dp);
         free(c);
         return NULL;
     }

@@ -117,9 +117,13 @@ typedef struct vres_canvas vres_canvas;
  * default, see VRES_DRAW_SOLID), no inversion, identity matrix, no layers. */
 void vres_paint_init(vres_paint *paint);
 
+/* Largest lattice vres_canvas_new accepts (nodes): 2^31 by default; a smaller limit keeps a
+ * fuzzing harness (tests/fuzz) from drawing cases of gigabytes. */
+extern size_t vres_canvas_max_nodes;
+
 /* A lattice of spacing dp aligned to ref covering [pmin, pmax]; dim 2 uses the x-z plane
  * y = pmin[1] (pmin[1] must equal pmax[1]). Returns NULL after printing why (dp <= 0, not
- * finite, empty domain, more than 2^31 nodes, out of memory). */
+ * finite, empty domain, more than vres_canvas_max_nodes nodes, out of memory). */
 vres_canvas *vres_canvas_new(int dim, double dp, const double ref[3], const double pmin[3], const double pmax[3]);
 /* A canvas of spacing dp (lattice ref, domain [pmin, pmax]) holding only the nodes in the
  * window [clo, chi] (a fine sub-domain never allocates the whole domain's fine lattice). It

@@ -76,8 +76,8 @@ static void append_word(char **line, size_t *len, const char *s)
     *len = (size_t)(o - *line);
 }
 
-void vres_cli_parse(vres_cli *c, int argc, char **argv, const char *tool, const char *synopsis,
-                    const vres_opt *opts, int min_pos, int max_pos)
+int vres_cli_try(vres_cli *c, int argc, char **argv, const char *tool, const char *synopsis,
+                 const vres_opt *opts, int min_pos, int max_pos)
 {
     memset(c, 0, sizeof *c);
     c->tool = tool;
@@ -173,12 +173,12 @@ void vres_cli_parse(vres_cli *c, int argc, char **argv, const char *tool, const 
     if (help) {
         fputs(synopsis, stdout);
         vres_cli_free(c);
-        exit(0);
+        return 0;
     }
     if (version) {
         printf("%s %s (git %s; %s)\n", tool, vres_version, vres_git_revision, vres_features);
         vres_cli_free(c);
-        exit(0);
+        return 0;
     }
     if (c->npos < min_pos) {
         vres_error("missing argument%s: expected at least %d, got %d", min_pos > 1 ? "s" : "", min_pos, c->npos);
@@ -191,8 +191,16 @@ void vres_cli_parse(vres_cli *c, int argc, char **argv, const char *tool, const 
     if (nerr) {
         fprintf(stderr, "Try '%s --help'.\n", tool);
         vres_cli_free(c);
-        exit(2);
+        return 2;
     }
+    return -1;
+}
+
+void vres_cli_parse(vres_cli *c, int argc, char **argv, const char *tool, const char *synopsis,
+                    const vres_opt *opts, int min_pos, int max_pos)
+{
+    int rc = vres_cli_try(c, argc, argv, tool, synopsis, opts, min_pos, max_pos);
+    if (rc >= 0) exit(rc);
 }
 
 void vres_cli_free(vres_cli *c)

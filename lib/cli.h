@@ -50,6 +50,11 @@ typedef struct vres_cli {
 void vres_cli_parse(vres_cli *c, int argc, char **argv, const char *tool, const char *synopsis,
                     const vres_opt *opts, int min_pos, int max_pos);
 
+/* vres_cli_parse without exiting: returns -1 when the tool goes on, else the status it would
+ * have exited with (0 after --help or --version, 2 after usage errors; c is then freed). */
+int vres_cli_try(vres_cli *c, int argc, char **argv, const char *tool, const char *synopsis,
+                 const vres_opt *opts, int min_pos, int max_pos);
+
 /* Free what vres_cli_parse allocated. */
 void vres_cli_free(vres_cli *c);
 

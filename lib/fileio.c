@@ -15,12 +15,18 @@
 
 int vres_out_begin(vres_outfile *o, const char *path)
 {
+    struct stat st;
+    o->direct = stat(path, &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode) || S_ISBLK(st.st_mode));
+    if (o->direct) {
+        o->path = vres_xstrdup(path);
+        o->tmp = vres_xstrdup(path);
+        return 0;
+    }
     o->path = vres_xstrdup(path);
     const char *slash = strrchr(path, '/');
     char *dir = slash ? vres_xasprintf("%.*s", (int)(slash - path) ? (int)(slash - path) : 1, path)
                       : vres_xstrdup(".");
     const char *base = slash ? slash + 1 : path;
-    struct stat st;
     if (!*base) {
         vres_error("%s: output names a directory, not a file", path);
         free(dir);
@@ -68,6 +74,12 @@ static int sync_path(const char *path, int is_dir)
 
 int vres_out_commit(vres_outfile *o)
 {
+    if (o->direct) { /* a device or FIFO, written in place: nothing to sync or rename */
+        free(o->tmp);
+        free(o->path);
+        o->tmp = o->path = NULL;
+        return 0;
+    }
     /* the data on the device before the name points at it, and the new name on the device
        before the caller goes on: a crash or power loss leaves the old file or the new one */
     if (sync_path(o->tmp, 0) != 0) {
@@ -112,7 +124,7 @@ int vres_out_sweep(const char *dir)
 
 void vres_out_abort(vres_outfile *o)
 {
-    if (o->tmp) unlink(o->tmp);
+    if (o->tmp && !o->direct) unlink(o->tmp);
     free(o->tmp);
     free(o->path);
     o->tmp = o->path = NULL;

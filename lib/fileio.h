@@ -9,11 +9,14 @@
 /* An output file being written atomically. */
 typedef struct vres_outfile {
     char *path; /* final name */
-    char *tmp;  /* temporary name in the same directory ("DIR/.NAME.tmp.PID") */
+    char *tmp;  /* temporary name in the same directory ("DIR/.NAME.tmp.PID"); path itself when direct */
+    int direct; /* 1: path is a device or FIFO (-o /dev/null), written in place, never renamed over
+                   nor removed */
 } vres_outfile;
 
 /* Prepare an atomic write of path: checks the directory exists and is writable and
- * chooses the temporary name. Returns 0, or -1 after printing why (naming path). */
+ * chooses the temporary name; an existing device or FIFO is written in place instead (a rename
+ * would replace /dev/null by a file). Returns 0, or -1 after printing why (naming path). */
 int vres_out_begin(vres_outfile *o, const char *path);
 /* Sync the temporary file to the storage device, rename it to the final name and sync the
  * directory (so that after a crash, even a power loss, the final name holds the old file or

@@ -315,9 +315,15 @@ int vres_probe_read_points(const char *path, double **pts, size_t *n)
     unsigned char *buf;
     size_t len;
     if (vres_read_all(path, &buf, &len) != 0) return -1;
-    const char *name = strcmp(path, "-") ? path : "stdin";
+    int rc = vres_probe_parse_points((char *)buf, strcmp(path, "-") ? path : "stdin", pts, n);
+    free(buf);
+    return rc;
+}
+
+int vres_probe_parse_points(char *text, const char *name, double **pts, size_t *n)
+{
     size_t n0 = *n, cap = *n;
-    char *p = (char *)buf;
+    char *p = text;
     int rc = 0;
     for (long line = 1; p && *p && rc == 0; line++) {
         char *eol = strchr(p, '\n');
@@ -354,7 +360,6 @@ int vres_probe_read_points(const char *path, double **pts, size_t *n)
         }
         p = eol ? eol + 1 : NULL;
     }
-    free(buf);
     if (rc == 0 && *n == n0) {
         vres_error("%s: no points (expected one point per line: x y z in m)", name);
         rc = -1;
@@ -479,9 +484,16 @@ int vres_ref_read(const char *path, const char *xcol, const char *const *ycols, 
     unsigned char *buf;
     size_t len;
     if (vres_read_all(path, &buf, &len) != 0) return -1;
-    const char *name = strcmp(path, "-") ? path : "stdin";
+    int rc = vres_ref_parse((char *)buf, strcmp(path, "-") ? path : "stdin", xcol, ycols, ny, r);
+    free(buf);
+    return rc;
+}
+
+int vres_ref_parse(char *text, const char *name, const char *xcol, const char *const *ycols, int ny, vres_ref *r)
+{
+    memset(r, 0, sizeof *r);
     r->path = vres_xstrdup(name);
-    char *text = (char *)buf, *last_comment = NULL, *hdr = NULL, *p = text;
+    char *last_comment = NULL, *hdr = NULL, *p = text;
     long line = 0, hdr_line = 0;
     char **f = vres_xmalloc((REF_MAXF + 1) * sizeof *f), **h = vres_xmalloc((REF_MAXF + 1) * sizeof *h);
     int nh = 0, xc = 0, yc = -1, rc = 0;
@@ -605,7 +617,6 @@ int vres_ref_read(const char *path, const char *xcol, const char *const *ycols, 
     free(rows);
     free(f);
     free(h);
-    free(buf);
     if (rc != 0) vres_ref_free(r);
     return rc;
 }

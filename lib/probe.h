@@ -126,6 +126,8 @@ double vres_probe_maxz(const vres_probe_snap *ps, const vres_probe_opts *o, cons
  * per line (blanks, tabs or commas between), '#' comments and blank lines skipped. Returns 0,
  * or -1 after printing "PATH:LINE: what is wrong" (or why the file cannot be read). */
 int vres_probe_read_points(const char *path, double **pts, size_t *n);
+/* The same from text (NUL-terminated, changed in place), named name in messages. */
+int vres_probe_parse_points(char *text, const char *name, double **pts, size_t *n);
 
 /* Parse "X0,Y0,Z0:X1,Y1,Z1:N" (m; N >= 2 points, ends included). Returns 0, or -1 after
  * printing what is wrong. */
@@ -149,6 +151,8 @@ typedef struct vres_ref {
  * fluid in vres-probe's own tables); rows are sorted by x, and an abscissa repeated with another value is refused. Returns 0,
  * or -1 after printing one message naming the file (and line or missing column). */
 int vres_ref_read(const char *path, const char *xcol, const char *const *ycols, int ny, vres_ref *r);
+/* The same from text (NUL-terminated, changed in place), named name in messages. */
+int vres_ref_parse(char *text, const char *name, const char *xcol, const char *const *ycols, int ny, vres_ref *r);
 /* The series linearly interpolated at x; NaN outside [x_0, x_{n-1}]. */
 double vres_ref_at(const vres_ref *r, double x);
 /* Free a series' arrays and names. */

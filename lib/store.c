@@ -35,6 +35,10 @@
 #define DEFLATE_LEVEL 1
 /* Growth step of the in-memory image when writing to stdout (bytes). */
 #define CORE_INCREMENT (16u << 20)
+/* Largest ratio of a particle dataset's size to the bytes it has in the file: deflate expands
+ * at most 1032 times. Checked before the particles are allocated, so that a size in a damaged
+ * or forged file cannot make the reader allocate without bound. */
+#define MAX_INFLATE 1100.0
 /* Largest number of values of a numeric parameter (vres_param.v). */
 #define MAX_PARAM_VALUES 9
 
@@ -483,6 +487,7 @@ static void put_array(wctx *w, hid_t loc, const char *name, hid_t ftype, hid_t m
         H5Pset_chunk(dcpl, rank, chunk);
         H5Pset_shuffle(dcpl);
         H5Pset_deflate(dcpl, DEFLATE_LEVEL);
+        H5Pset_fletcher32(dcpl); /* last: a damaged chunk is refused before it is inflated */
     }
     hid_t d = H5Dcreate2(loc, name, ftype, sp, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     herr_t e = d < 0 ? -1 : n > 0 ? H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) : 0;
@@ -752,6 +757,76 @@ static int check_writable(const vres_store *s, const char *path)
     return 0;
 }
 
+/* The file image HDF5's core driver builds, taken over when the file is closed: only then is
+ * the superblock final (H5Fget_file_image of HDF5 1.10 clears its "open for writing" flags in
+ * the copy it returns without updating its checksum, so a file in the 1.8 format or later
+ * taken that way cannot be opened: measured with h5dump). */
+typedef struct core_image {
+    unsigned char *mem; /* the driver's buffer; ours once kept */
+    size_t size;        /* its allocated size (bytes) */
+    int kept;           /* 1 once the driver handed it over at the file's close */
+} core_image;
+
+/* Image callbacks (H5Pset_file_image_callbacks): allocation through the C library, and the
+ * buffer kept, not freed, when the driver releases it at close. */
+
+/* image_malloc: a new buffer, which becomes the image's. */
+static void *img_malloc(size_t size, H5FD_file_image_op_t op, void *udata)
+{
+    (void)op;
+    core_image *c = udata;
+    c->mem = malloc(size);
+    c->size = c->mem ? size : 0;
+    return c->mem;
+}
+/* image_memcpy: a plain copy. */
+static void *img_memcpy(void *dst, const void *src, size_t size, H5FD_file_image_op_t op, void *udata)
+{
+    (void)op, (void)udata;
+    return memcpy(dst, src, size);
+}
+/* image_realloc: the image's buffer grown (or moved). */
+static void *img_realloc(void *ptr, size_t size, H5FD_file_image_op_t op, void *udata)
+{
+    (void)op;
+    core_image *c = udata;
+    void *p = realloc(ptr, size);
+    if (p) c->mem = p, c->size = size;
+    return p;
+}
+/* image_free: kept when the driver releases the image at close, freed otherwise. */
+static herr_t img_free(void *ptr, H5FD_file_image_op_t op, void *udata)
+{
+    core_image *c = udata;
+    if (op == H5FD_FILE_IMAGE_OP_FILE_CLOSE && ptr && ptr == c->mem) c->kept = 1;
+    else free(ptr);
+    return 0;
+}
+/* udata_copy: the same core_image. */
+static void *img_udata_copy(void *udata)
+{
+    return udata; /* shared: the property lists and the file all fill the one core_image */
+}
+/* udata_free: nothing (the core_image lives on build_image's stack). */
+static herr_t img_udata_free(void *udata)
+{
+    (void)udata;
+    return 0;
+}
+
+/* Length of the HDF5 file in the image c kept (its superblock's end-of-file address; the buffer
+ * is larger by up to CORE_INCREMENT), or 0 when it holds no version 3 superblock of 8-byte
+ * addresses at 0. */
+static size_t image_length(const core_image *c)
+{
+    static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+    const unsigned char *m = c->mem;
+    if (!c->kept || c->size < 48 || memcmp(m, sig, 8) != 0 || m[8] != 3 || m[9] != 8) return 0;
+    uint64_t base = 0, eof = 0;
+    for (int i = 7; i >= 0; i--) base = base << 8 | m[12 + i], eof = eof << 8 | m[28 + i];
+    return base == 0 && eof >= 48 && eof <= c->size ? (size_t)eof : 0;
+}
+
 /* Build the store's HDF5 file image in memory (HDF5's core driver, no backing file); name
  * is the destination for messages. Returns the image (*len bytes), or NULL after printing
  * why. HDF5 never touches the disk: a disk error while HDF5 writes a file leaves it unable
@@ -766,15 +841,23 @@ static unsigned char *build_image(const vres_store *s, const char *name, size_t 
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 
     wctx w = {0};
+    core_image img = {NULL, 0, 0};
+    H5FD_file_image_callbacks_t cb = {img_malloc, img_memcpy, img_realloc, img_free, img_udata_copy,
+                                      img_udata_free, &img};
     hid_t fapl = base_fapl();
     H5Pset_fapl_core(fapl, CORE_INCREMENT, 0);
     H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+    /* HDF5 1.10's file format: its superblock, object headers, heaps, B-trees and chunk
+     * indexes carry checksums, so a damaged file is refused when opened instead of being parsed
+     * (HDF5 1.10 read out of bounds in flipped attribute messages of the oldest format, and in
+     * the 1.8 format, whose chunk index has no checksum, in a fuzzed one). HDF5 1.10.0 and later
+     * read it (vres-store(5)). */
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+    H5Pset_file_image_callbacks(fapl, &cb);
     char core_name[64];
     snprintf(core_name, sizeof core_name, "vres-image-%ld-%u.h5", (long)getpid(), serial++);
-    /* Tracking attribute order gives the root group a version-2 object header, whose dense
-     * attribute storage takes attributes over 64 KiB (a long history). The file format as a
-     * whole stays the oldest one: H5Fget_file_image of HDF5 1.10 returns images with a bad
-     * superblock checksum for the 1.8 format. */
+    /* Tracking attribute order lets dense attribute storage take attributes over 64 KiB (a
+     * long history). */
     hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
     H5Pset_attr_creation_order(fcpl, H5P_CRT_ORDER_TRACKED);
     hid_t f = H5Fcreate(core_name, H5F_ACC_TRUNC, fcpl, fapl);
@@ -782,28 +865,18 @@ static unsigned char *build_image(const vres_store *s, const char *name, size_t 
     H5Pclose(fcpl);
     H5Pclose(fapl);
     write_model(&w, f, s);
-
-    unsigned char *img = NULL;
-    ssize_t n = 0;
-    if (!w.bad && H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) wfail(&w, -1, "the in-memory file (flush)", 0);
-    if (!w.bad) {
-        n = H5Fget_file_image(f, NULL, 0);
-        if (n > 0) {
-            img = vres_xmalloc((size_t)n);
-            if (H5Fget_file_image(f, img, (size_t)n) != n) n = -1;
-        }
-        if (n <= 0) wfail(&w, -1, "the in-memory image", 0);
-    }
     if (f >= 0 && H5Fclose(f) < 0) wfail(&w, -1, "the in-memory file (close)", 0);
+    size_t n = w.bad ? 0 : image_length(&img);
+    if (!w.bad && n == 0) wfail(&w, -1, "the in-memory image", 0);
     H5Eset_auto2(H5E_DEFAULT, efunc, edata);
     if (w.bad) {
         vres_error("%s: cannot write store: %s%s%s%s", name, w.why[0] ? w.why : "HDF5 error",
                    w.what[0] ? " (writing " : "", w.what, w.what[0] ? ")" : "");
-        free(img);
+        if (img.kept) free(img.mem);
         return NULL;
     }
-    *len = (size_t)n;
-    return img;
+    *len = n;
+    return img.mem;
 }
 
 /* Write len bytes of img to the temporary file tmp (messages name the final path).
@@ -1127,6 +1200,9 @@ static void get_array(rctx *r, hid_t loc, const char *name, H5T_class_t cls, siz
         rerr(r, "%s: wrong shape (%s expected)", p, want == 2 ? "count x 3" : "a vector");
     else if (dims[0] != n)
         rerr(r, "%s: %llu rows but the domain's count is %zu", p, (unsigned long long)dims[0], n);
+    else if (!data && (double)n * ncomp * tsize > MAX_INFLATE * (double)H5Dget_storage_size(d))
+        rerr(r, "%s: %zu rows of %zu bytes stored in %llu bytes, more than compression can hold (file damaged)", p,
+             n, (size_t)ncomp * tsize, (unsigned long long)H5Dget_storage_size(d));
     else if (data && n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
         char why[200];
         h5_reason(why);
@@ -1154,6 +1230,17 @@ static size_t group_size(rctx *r, hid_t g)
 /* Root attributes; the format check comes first so a foreign file gets that message. */
 static void read_root(rctx *r, hid_t f, vres_store *s)
 {
+    /* Only the checksummed file format is parsed: HDF5 reads out of bounds in damaged metadata
+     * of the older ones (a flipped-bit store of superblock version 0 under H5Aexists, a fuzzed
+     * one of version 2 whose chunk index pointed at another dataset's chunk under H5Dread). */
+    H5F_info2_t fi;
+    if (H5Fget_info2(f, &fi) < 0) fi.super.version = 0;
+    if (fi.super.version < 3) {
+        rerr(r, "HDF5 file format without checksums (superblock version %u): vres reads stores in HDF5 1.10's "
+             "format, superblock version 3 (an older vres store converts with: h5repack -L FILE NEWFILE)",
+             fi.super.version);
+        return;
+    }
     if (H5Aexists(f, "format") <= 0) {
         rerr(r, "not a vres store (an HDF5 file without the attribute format=\"%s\")", VRES_STORE_FORMAT);
         return;
@@ -1497,6 +1584,19 @@ static void open_failed(rctx *r)
     rerr(r, "damaged or truncated HDF5 file%s%s%s", *why ? " (" : "", why, *why ? ")" : "");
 }
 
+/* Open the file image img (len bytes, kept by the caller until the file is closed) for
+ * reading. Returns the file id, or -1 after reporting. */
+static hid_t open_image(rctx *r, const unsigned char *img, size_t len)
+{
+    if (len == 0) rerr(r, "empty input, not a vres store");
+    else if (!has_signature(img, len, NULL)) rerr(r, "not an HDF5 file, so not a vres store");
+    if (r->bad) return -1;
+    /* read only: HDF5 neither writes to nor frees the image */
+    hid_t f = H5LTopen_file_image((void *)img, len, H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
+    if (f < 0) open_failed(r);
+    return f;
+}
+
 /* Open path for reading: a regular file directly; stdin ("-"), pipes and other streams by
  * reading them into *img (which the caller frees after closing) and opening that image.
  * Returns the file id, or -1 after reporting. */
@@ -1525,12 +1625,7 @@ static hid_t open_store(rctx *r, const char *path, unsigned char **img)
             r->bad = 1; /* vres_read_all said why */
             return -1;
         }
-        if (len == 0) rerr(r, "empty input, not a vres store");
-        else if (!has_signature(*img, len, NULL)) rerr(r, "not an HDF5 file, so not a vres store");
-        if (r->bad) return -1;
-        hid_t f = H5LTopen_file_image(*img, len, H5LT_FILE_IMAGE_DONT_COPY | H5LT_FILE_IMAGE_DONT_RELEASE);
-        if (f < 0) open_failed(r);
-        return f;
+        return open_image(r, *img, len);
     }
     hid_t fapl = base_fapl();
     H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
@@ -1540,17 +1635,19 @@ static hid_t open_store(rctx *r, const char *path, unsigned char **img)
     return f;
 }
 
-/* Read a store, whole or header only (see store.h). */
-static vres_store *read_store(const char *path, int header_only)
+/* Read a store, whole or header only (see store.h): from the file path, or when path is NULL
+ * from the image mem (mlen bytes) named name. */
+static vres_store *read_store(const char *path, const unsigned char *mem, size_t mlen, const char *name,
+                              int header_only)
 {
-    rctx r = {strcmp(path, "-") == 0 ? "(stdin)" : path, 0, header_only};
+    rctx r = {path ? (strcmp(path, "-") == 0 ? "(stdin)" : path) : name, 0, header_only};
     no_hdf5_exit_handler();
     H5E_auto2_t efunc;
     void *edata;
     H5Eget_auto2(H5E_DEFAULT, &efunc, &edata);
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    unsigned char *img;
-    hid_t f = open_store(&r, path, &img);
+    unsigned char *img = NULL;
+    hid_t f = path ? open_store(&r, path, &img) : open_image(&r, mem, mlen);
     vres_store *s = NULL;
     if (f >= 0) {
         s = vres_store_new();
@@ -1568,10 +1665,15 @@ static vres_store *read_store(const char *path, int header_only)
 
 vres_store *vres_store_read(const char *path)
 {
-    return read_store(path, 0);
+    return read_store(path, NULL, 0, NULL, 0);
 }
 
 vres_store *vres_store_read_header(const char *path)
 {
-    return read_store(path, 1);
+    return read_store(path, NULL, 0, NULL, 1);
+}
+
+vres_store *vres_store_read_image(const void *img, size_t len, const char *name)
+{
+    return read_store(NULL, img, len, name, 0);
 }

@@ -241,5 +241,8 @@ vres_store *vres_store_read(const char *path);
  * has n set from its count, cap 0 and every array NULL. Same checks and messages as
  * vres_store_read otherwise. */
 vres_store *vres_store_read_header(const char *path);
+/* Read a store from an HDF5 file image held in memory (len bytes; the caller keeps it), named
+ * name in messages. Same checks and messages as vres_store_read. */
+vres_store *vres_store_read_image(const void *img, size_t len, const char *name);
 
 #endif

@@ -495,7 +495,7 @@ int main(int argc, char **argv)
         vres_cli_free(&cli);
         return 2;
     }
-    vres_outfile of = {NULL, NULL};
+    vres_outfile of = {NULL, NULL, 0};
     int to_file = cli.output && strcmp(cli.output, "-");
     int rc = to_file ? vres_out_begin(&of, cli.output) : 0; /* an unwritable -o fails before the work */
     if (rc == 0) rc = gather_points(&cli, &J);

@@ -95,6 +95,23 @@ END_TEST
 START_TEST(help_exits_zero) { const char *a[] = {"x", "--nope", "--help", NULL}; vres_cli c; parse(&c, a); }
 END_TEST
 
+/* vres_cli_try gives the status vres_cli_parse exits with, and returns: -1 to go on, 0 after
+ * --help or --version, 2 after a usage error (the harness tests/fuzz/fuzz_cli.c relies on it). */
+START_TEST(try_returns_status)
+{
+    const char *go[] = {"x", "--dp", "0.5", "f"}, *help[] = {"x", "--help"}, *bad[] = {"x", "--nope", "f"};
+    vres_cli c;
+    ck_assert_int_eq(vres_cli_try(&c, 4, (char **)go, "vres-test", synopsis, opts, 1, 1), -1);
+    ck_assert_double_eq(vres_cli_double(&c, "dp", 0), 0.5);
+    vres_cli_free(&c);
+    fflush(stdout);
+    ck_assert_int_eq(vres_cli_try(&c, 2, (char **)help, "vres-test", synopsis, opts, 1, 1), 0);
+    ck_assert_ptr_null(c.pos); /* freed */
+    ck_assert_int_eq(vres_cli_try(&c, 3, (char **)bad, "vres-test", synopsis, opts, 1, 1), 2);
+    ck_assert_ptr_null(c.vals);
+}
+END_TEST
+
 /* All usage errors of one command line are reported, not just the first. */
 START_TEST(all_errors_reported)
 {
@@ -145,6 +162,7 @@ int main(void)
     tcase_add_exit_test(tc, flag_with_value, 2);
     tcase_add_exit_test(tc, help_exits_zero, 0);
     tcase_add_test(tc, all_errors_reported);
+    tcase_add_test(tc, try_returns_status);
     suite_add_tcase(s, tc);
     return vres_check_run(s);
 }

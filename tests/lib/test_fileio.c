@@ -109,6 +109,28 @@ START_TEST(atomic_abort_leaves_nothing)
 }
 END_TEST
 
+/* A device is written in place: -o /dev/null once replaced /dev/null by a regular file (the
+ * rename of the temporary), for every process of the machine. */
+START_TEST(device_written_in_place)
+{
+    struct stat st;
+    vres_outfile o;
+    ck_assert_int_eq(vres_out_begin(&o, "/dev/null"), 0);
+    ck_assert_str_eq(o.tmp, "/dev/null");
+    FILE *f = fopen(o.tmp, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs("x", f);
+    fclose(f);
+    ck_assert_int_eq(vres_out_commit(&o), 0);
+    ck_assert_int_eq(stat("/dev/null", &st), 0);
+    ck_assert(S_ISCHR(st.st_mode));
+    ck_assert_int_eq(vres_out_begin(&o, "/dev/null"), 0);
+    vres_out_abort(&o); /* not removed */
+    ck_assert_int_eq(stat("/dev/null", &st), 0);
+    ck_assert(S_ISCHR(st.st_mode));
+}
+END_TEST
+
 START_TEST(refuses_bad_directories)
 {
     char path[160];
@@ -158,6 +180,7 @@ int main(void)
     tcase_add_test(tc, atomic_abort_leaves_nothing);
     tcase_add_test(tc, sweep_removes_dead_writers_temporaries);
     tcase_add_test(tc, refuses_bad_directories);
+    tcase_add_test(tc, device_written_in_place);
     tcase_add_test(tc, read_missing_file_fails);
     tcase_add_test(tc, mkdirs_nested);
     suite_add_tcase(s, tc);

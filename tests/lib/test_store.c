@@ -285,6 +285,14 @@ static void read_fails(const char *path, const char *name, const char *want)
     ck_assert_msg(strstr(line, want) != NULL, "message lacks '%s': %s", want, line);
 }
 
+/* New file access properties of HDF5 1.10's file format, the one vres reads (H5Pclose them). */
+static hid_t fapl_v110(void)
+{
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+    return fapl;
+}
+
 /* Write the sample store to path and return it (for mutation tests). */
 static void write_sample(const char *path)
 {
@@ -444,6 +452,20 @@ START_TEST(test_roundtrip_memory)
     vres_store *c = vres_store_read(path);
     ck_assert_ptr_nonnull(c);
     same(a, c, 0);
+    /* read from memory (vres_store_read_image), whole and cut short */
+    FILE *f = fopen(path, "rb");
+    ck_assert_ptr_nonnull(f);
+    unsigned char *img = vres_xmalloc(1 << 22);
+    size_t len = fread(img, 1, 1 << 22, f);
+    fclose(f);
+    ck_assert_uint_gt(len, 1000);
+    ck_assert_uint_lt(len, 1 << 22);
+    vres_store *d = vres_store_read_image(img, len, "mem.h5");
+    ck_assert_ptr_nonnull(d);
+    same(a, d, 0);
+    ck_assert_ptr_null(vres_store_read_image(img, len / 2, "mem.h5"));
+    free(img);
+    vres_store_free(d);
     vres_store_free(a);
     vres_store_free(b);
     vres_store_free(c);
@@ -570,9 +592,17 @@ START_TEST(test_bad_files)
     fclose(f);
     read_fails(path, path, "not an HDF5 file");
     free(path);
-    /* a plain HDF5 file with one dataset */
-    path = vres_xasprintf("%s/foreign.h5", dir);
+    /* an HDF5 file in the oldest format, without checksums: refused before it is parsed */
+    path = vres_xasprintf("%s/old.h5", dir);
     hid_t h = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    H5Fclose(h);
+    read_fails(path, path, "without checksums (superblock version 0)");
+    free(path);
+    /* a plain HDF5 file with one dataset, in the format vres reads */
+    path = vres_xasprintf("%s/foreign.h5", dir);
+    hid_t fa = fapl_v110();
+    h = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fa);
+    H5Pclose(fa);
     hsize_t n = 4;
     hid_t sp = H5Screate_simple(1, &n, NULL);
     hid_t ds = H5Dcreate2(h, "data", H5T_NATIVE_INT, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -773,7 +803,9 @@ static int write_fixtures(const char *store, const char *foreign)
     int rc = vres_store_write(s, store);
     vres_store_free(s);
     if (rc == 0 && foreign) {
-        hid_t h = H5Fcreate(foreign, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+        hid_t fa = fapl_v110();
+        hid_t h = H5Fcreate(foreign, H5F_ACC_TRUNC, H5P_DEFAULT, fa);
+        H5Pclose(fa);
         hid_t g = h < 0 ? -1 : H5Gcreate2(h, "stuff", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
         rc = g < 0 ? -1 : 0;
         if (g >= 0) H5Gclose(g);

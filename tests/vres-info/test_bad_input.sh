@@ -32,6 +32,13 @@ bad "text file" "text\.h5: not an HDF5 file" "$T/text.h5"
 bad "truncated store" "trunc\.h5: damaged or truncated" "$T/trunc.h5"
 bad "store missing its last bytes" "trunc_end\.h5: damaged or truncated" "$T/trunc_end.h5"
 bad "foreign HDF5" "foreign\.h5: not a vres store" "$T/foreign.h5"
+# the oldest HDF5 format (what vres wrote before, and h5copy writes): refused before it is parsed,
+# with the conversion that makes it readable (a store vres-gencase wrote before the change)
+cp "$ROOT/tests/fuzz/regress/store/v0-format-hydrostatic2d.h5" "$T/old.h5"
+bad "store in the oldest HDF5 format" "old\.h5: HDF5 file format without checksums \(superblock version 0\).*h5repack -L" "$T/old.h5"
+h5repack -L "$T/old.h5" "$T/converted.h5"
+run "$INFO" "$T/converted.h5"
+check "converted with h5repack -L: read" [ "$STATUS" -eq 0 ]
 bad "truncated store on stdin" "\(stdin\): damaged or truncated" - <"$T/trunc.h5"
 bad "text on stdin" "\(stdin\): not an HDF5 file" - <"$T/text.h5"
 bad "empty stdin" "\(stdin\): empty input" - </dev/null

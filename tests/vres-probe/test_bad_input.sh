@@ -39,7 +39,8 @@ cp "$T/good.h5" "$T/bad/snap_00000.h5"
 head -c 3000 "$T/good.h5" >"$T/bad/snap_00001.h5"
 cp "$T/good.h5" "$T/bad/snap_00002.h5"
 fails "truncated snapshot in a run" 'snap_00001\.h5: ' --points "$T/pts.txt" "$T/bad"
-h5copy -i "$T/good.h5" -o "$T/foreign.h5" -s /Domains/D0 -d /Other
+h5copy -i "$T/good.h5" -o "$T/foreign0.h5" -s /Domains/D0 -d /Other
+h5repack -L "$T/foreign0.h5" "$T/foreign.h5" # h5copy writes the oldest format, which is refused as such
 mkdir "$T/foreign"
 cp "$T/foreign.h5" "$T/foreign/snap_00007.h5"
 fails "snapshot that is not a store" 'snap_00007\.h5: not a vres store' --points "$T/pts.txt" "$T/foreign"

@@ -14,7 +14,8 @@ fi
 # Bad files.
 echo "this is text, not HDF5" >"$T/text.h5"
 head -c 2000 "$T/syn.h5" >"$T/trunc.h5"
-h5copy -i "$T/syn.h5" -o "$T/foreign.h5" -s /Domains/D0 -d /Other # valid HDF5, not a store
+h5copy -i "$T/syn.h5" -o "$T/foreign0.h5" -s /Domains/D0 -d /Other # valid HDF5, not a store
+h5repack -L "$T/foreign0.h5" "$T/foreign.h5" # in the checksummed format vres reads (h5copy writes the oldest)
 echo "plain file" >"$T/plain"
 mkdir "$T/out" "$T/empty_run"
 
