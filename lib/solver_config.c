@@ -285,6 +285,14 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     for (size_t k = 0; k < set->n; k++)
         if (read_domain(s, c, k, &set->dom[k], &bad) != 0) return -1;
     if (check_bodies(s) != 0) bad = 1;
+    for (size_t k = 0; k < set->n; k++)
+        if (set->dom[k].nfloating) { /* what floating bodies could be asked for beyond vres-run's SPH rigid bodies */
+            double v = vres_params_get(P, "RigidAlgorithm", 1);
+            if (v != 1) not_impl(&bad, "RigidAlgorithm", v, "floating bodies without SPH contact", "1 (SPH)");
+            if ((v = vres_params_get(P, "FtPause", 0)) != 0)
+                not_impl(&bad, "FtPause", v, "floating bodies held at the start", "0");
+            break;
+        }
     if (s->inout_xml) vres_error("inlet/outlet zones (<inout>): not implemented yet"), bad = 1;
 
     c->rho0 = need(s, "rhop0", &bad);
