@@ -11,7 +11,9 @@
 # bit (particles and /Bodies), the module list names the floating bodies, and what vres-run
 # does not run with them (mDBC, Verlet restarts aside) is refused with nothing written.
 source "$(dirname "$0")/../harness.sh"
-cat >"$T/fl_Def.xml" <<'XML'
+# the constants and the start of both cases below
+consts() {
+    cat <<'XML'
 <?xml version="1.0" encoding="UTF-8" ?>
 <case>
     <casedef>
@@ -22,6 +24,9 @@ cat >"$T/fl_Def.xml" <<'XML'
             <coefh value="1.0" /> <cflnumber value="0.2" />
         </constantsdef>
         <mkconfig boundcount="240" fluidcount="9" />
+XML
+}
+{ consts; cat <<'XML'
         <geometry>
             <definition dp="0.01">
                 <pointref x="0.005" y="0" z="0.005" />
@@ -63,6 +68,7 @@ cat >"$T/fl_Def.xml" <<'XML'
     </execution>
 </case>
 XML
+} >"$T/fl_Def.xml"
 # attr PATH FILE: an attribute's numbers, one per line, at full double precision (h5dump's)
 attr() {
     h5dump -m '%.17g' -a "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /\}/ {exit}
@@ -115,17 +121,7 @@ check "Verlet: body 1's centre z $czv within g dt t = 1.5e-4 m of z0 - g t^2/2 =
 # its angular momentum L = R I0 R^T w is conserved (to the scheme's O(dt^2) per step: 1e-3 over
 # 0.1 s, where leaving out the gyroscopic term w x I w would change L at the rate of |w x I w|,
 # several percent over 0.1 s), and its centre falls freely
-cat >"$T/fl3_Def.xml" <<'XML'
-<?xml version="1.0" encoding="UTF-8" ?>
-<case>
-    <casedef>
-        <constantsdef>
-            <gravity x="0" y="0" z="-9.81" /> <rhop0 value="1000" /> <gamma value="7" />
-            <hswl value="0" auto="true" /> <speedsystem value="0" auto="true" />
-            <coefsound value="20" /> <speedsound value="0" auto="true" />
-            <coefh value="1.0" /> <cflnumber value="0.2" />
-        </constantsdef>
-        <mkconfig boundcount="240" fluidcount="9" />
+{ consts; cat <<'XML'
         <geometry>
             <definition dp="0.02">
                 <pointref x="0.01" y="0.01" z="0.01" />
@@ -156,6 +152,7 @@ cat >"$T/fl3_Def.xml" <<'XML'
     </execution>
 </case>
 XML
+} >"$T/fl3_Def.xml"
 "$BIN/vres-gencase" -q "$T/fl3_Def.xml" -o "$T/fl3.h5" || notok "gencase the 3D block"
 expect 0 "3D run 0.1 s" "$BIN/vres-run" -q --threads 1 "$T/fl3.h5" -o "$T/r3"
 # L = R I0 R^T w from a snapshot's /Bodies (quat, inertia, omega)
