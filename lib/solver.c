@@ -396,7 +396,9 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         return VRES_RUN_FAIL;
     }
     /* floating bodies run on the CPU backend only, for now (as the coupling below) */
-    if (set.dom[0].nfloating && dev == VRES_DEV_CUDA) {
+    size_t nfloating = 0;
+    for (size_t k = 0; k < set.n; k++) nfloating += set.dom[k].nfloating;
+    if (nfloating && dev == VRES_DEV_CUDA) {
         if (o->device && !strcmp(o->device, "cuda")) {
             vres_error("floating bodies: the CUDA backend does not run them yet; use --device cpu");
             free_set(&set, 0);
@@ -424,7 +426,7 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }
-    if (set.dom[0].nfloating && !set.b[0].body_forces) {
+    if (nfloating && !set.b[0].body_forces) {
         vres_error("floating bodies: the %s backend does not run them yet; use --device cpu", set.b[0].name);
         free_set(&set, 1);
         return VRES_RUN_FAIL;

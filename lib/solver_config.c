@@ -149,11 +149,10 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
     /* a sub-domain may start dry (a refinement box where the flow arrives later) */
     if (!dc->nfluid && s->ndomains == 1) vres_error("the store has no fluid particles: nothing to run"), *bad = 1;
     for (int t = 0; t < VRES_NTYPES; t++) /* buffers only where a coupling gives them their state */
-        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && !(t == VRES_BUFFER && s->ndomains > 1) &&
-            !(t == VRES_FLOATING && s->ndomains == 1) && count[t])
-            vres_error("%zu %s particles%s: not implemented yet (vres-run runs fluid, fixed and moving walls%s)",
-                       count[t], vres_ptype_name(t), t == VRES_FLOATING ? " in a variable-resolution run" : "",
-                       t == VRES_FLOATING ? ", and floating bodies in single-resolution runs" : ""), *bad = 1;
+        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && t != VRES_FLOATING &&
+            !(t == VRES_BUFFER && s->ndomains > 1) && count[t])
+            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed, moving and floating walls)",
+                       count[t], vres_ptype_name(t)), *bad = 1;
     /* a box that follows a body (lib/track.h) moves with a prescribed motion only */
     if (d->tracking_mk >= 0 && d->parent >= 0 && vres_track_body(s, d->tracking_mk) < 0) {
         int floating = 0;
@@ -320,7 +319,9 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
             vres_error("SlipMode=%g: must be 1 (the wall's own velocity), 2 (no-slip) or 3 (free slip)", v), bad = 1;
     }
     for (size_t k = 0; k < set->n; k++) count_normals(s, c, &set->dom[k]);
-    if (c->mdbc && set->dom[0].nfloating)
+    size_t nfloating = 0;
+    for (size_t k = 0; k < set->n; k++) nfloating += set->dom[k].nfloating;
+    if (c->mdbc && nfloating)
         vres_error("Boundary=2 (mDBC) with floating bodies: not implemented yet; vres-run runs floating bodies with "
                    "DBC walls (Boundary=1)"), bad = 1;
     read_options(P, c, &bad);

@@ -127,6 +127,13 @@ vres_floats *vres_floats_open(const vres_store *s, const double g[3])
         if (sb->kind != VRES_FLOATING) continue;
         vres_float_body *b = &f->b[f->n++];
         b->index = (int)k;
+        b->owner = 0;
+        for (size_t d = 0; d < s->ndomains; d++) /* children come after their parents */
+            for (size_t i = 0; i < s->dom[d].n; i++)
+                if (vres_type_is_floating(s->dom[d].type[i]) && s->dom[d].mk[i] == sb->mkbound) {
+                    b->owner = (int)d;
+                    break;
+                }
         b->mass = sb->mass;
         memcpy(b->inertia0, sb->inertia, sizeof b->inertia0);
         for (int a = 0; a < 3; a++) {
@@ -170,7 +177,7 @@ static void gather(vres_floats *f, vres_backend *b, size_t nb)
     for (size_t k = 0; k < nb; k++) {
         b[k].body_forces(&b[k], f->c, f->ft);
         for (size_t j = 0; j < f->n; j++)
-            for (int a = 0; a < 6; a++) f->b[j].ft[a] += f->ft[6 * f->b[j].index + a];
+            for (int a = 0; a < 6 && f->b[j].owner == (int)k; a++) f->b[j].ft[a] += f->ft[6 * f->b[j].index + a];
     }
 }
 

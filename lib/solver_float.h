@@ -28,6 +28,9 @@ typedef struct vres_float_state {
 /* One floating body of a run. */
 typedef struct vres_float_body {
     int index;               /* the body's index in the store (s->body[index]) */
+    int owner;               /* the domain whose particles give its force: the last (finest) of the store's
+                                domains holding particles of it (a parent keeps a coarser copy of a body
+                                inside a child's box, which moves with it but adds no force) */
     double mass;             /* kg */
     double inertia0[9];      /* inertia tensor about the centre at orientation identity (kg m^2), row-major */
     int tdof[3];             /* 1 where translation along x, y, z is free (2D: y fixed) */
@@ -72,8 +75,9 @@ void vres_floats_close(vres_floats *f);
 /* Keep every body's state as the step's start (nothing when f is NULL). */
 void vres_floats_begin(vres_floats *f);
 
-/* Gather the bodies' force and torque sums from the nb backends b (after their forces), then
- * move the bodies by the phase (VRES_FLOAT_*) over dt (s). Nothing when f is NULL. */
+/* Gather the bodies' force and torque sums from the nb backends b (after their forces; b[k]
+ * holds the store's domain k), each body's from its owner's only, then move the bodies by the
+ * phase (VRES_FLOAT_*) over dt (s). Nothing when f is NULL. */
 void vres_floats_step(vres_floats *f, struct vres_backend *b, size_t nb, double dt, int phase);
 
 /* Each body's transform since its anchor into mv[its store index] (kernels/rigid.h): x = R x_a
