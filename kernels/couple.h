@@ -245,21 +245,23 @@ VRES_HD static inline double vres_couple_crossing(const vres_donor *D, const dou
                 for (size_t b = nb[q].begin; b < nb[q].end; b++) {
                     if (!vres_type_is_fluid(D->type[b])) continue;
                     double d[3], d0[3];
+                    for (int a = 0; a < 3; a++) d[a] = D->pos[3 * b + a] + nb[q].shift[a] - c[a];
+                    if (dim == 2) d[1] = 0;
+                    const double u1 = d[0] * t1[0] + d[1] * t1[1] + d[2] * t1[2];
+                    const double u2 = dim == 2 ? 0.0 : d[0] * t2[0] + d[1] * t2[1] + d[2] * t2[2];
+                    /* counted once: by the piece whose tangential span holds it (tested before
+                       the step's displacement is formed: most candidates of the cells fail it) */
+                    if (u1 < lo1 || u1 >= lo1 + w / np || (dim == 3 && (u2 < lo2 || u2 >= lo2 + w / np))) continue;
+                    const double cover = vres_couple_cover(u1, dpb, len) * (dim == 2 ? 1.0 : vres_couple_cover(u2, dpb, len));
+                    if (cover <= 0) continue;
                     for (int a = 0; a < 3; a++) {
                         /* the step's displacement, less a period where the particle wrapped */
                         double u = D->pos[3 * b + a] - D->pos0[3 * b + a];
                         const double L = D->cells.period[a];
                         if (L > 0) u -= L * floor(u / L + 0.5);
-                        d[a] = D->pos[3 * b + a] + nb[q].shift[a] - c[a];
                         d0[a] = d[a] - u + vbox[a] * dt;
                     }
-                    if (dim == 2) d[1] = d0[1] = 0;
-                    const double u1 = d[0] * t1[0] + d[1] * t1[1] + d[2] * t1[2];
-                    const double u2 = dim == 2 ? 0.0 : d[0] * t2[0] + d[1] * t2[1] + d[2] * t2[2];
-                    /* counted once: by the piece whose tangential span holds it */
-                    if (u1 < lo1 || u1 >= lo1 + w / np || (dim == 3 && (u2 < lo2 || u2 >= lo2 + w / np))) continue;
-                    const double cover = vres_couple_cover(u1, dpb, len) * (dim == 2 ? 1.0 : vres_couple_cover(u2, dpb, len));
-                    if (cover <= 0) continue;
+                    if (dim == 2) d0[1] = 0;
                     const double sn = -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
                     const double s0 = -(d0[0] * n[0] + d0[1] * n[1] + d0[2] * n[2]);
                     m += D->mass[b] * cover * (vres_couple_slab(sn, dpb) - vres_couple_slab(s0, dpb));

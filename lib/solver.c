@@ -82,15 +82,21 @@ static void wall_motion(const vres_store *s, run_motion *rm, double t)
  * 0, or -1 after printing why. */
 static int sort_all(run_set *set, const run_cfg *c, int carry, int sorted, double t)
 {
+    double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n && !sorted; k++)
         if (set->b[k].sort(&set->b[k], carry) != 0) return -1;
-    return carry ? 0 : vres_couple_buffers(set, c, t);
+    t0 = vres_prof_add(&set->prof, VRES_PROF_SORT, t0);
+    const int rc = carry ? 0 : vres_couple_buffers(set, c, t);
+    vres_prof_add(&set->prof, VRES_PROF_COUPLE, t0);
+    return rc;
 }
 
 /* Keep every domain's state as the step's start. */
 static void save_start_all(run_set *set)
 {
+    const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) set->b[k].save_start(&set->b[k]);
+    vres_prof_add(&set->prof, VRES_PROF_INTEGRATE, t0);
 }
 
 /* The forces in every domain (with the shifting sums when shift), each domain's own stable
@@ -100,37 +106,68 @@ static void save_start_all(run_set *set)
 static double forces_all(run_set *set, const run_cfg *c, int shift, size_t *kmin, double *amax, double *visc)
 {
     double dt = INFINITY;
+    const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) {
         double vk, ak = set->b[k].forces(&set->b[k], shift, &vk), h = set->dom[k].h;
         double dt1 = ak > 0 ? sqrt(h / ak) : INFINITY;
         set->dt[k] = c->cfl * fmin(dt1, h / (c->cs0 + h * vk));
         if (k == 0 || set->dt[k] < dt) dt = set->dt[k], *kmin = k, *amax = ak, *visc = vk;
     }
+    vres_prof_add(&set->prof, VRES_PROF_FORCES, t0);
     return dt;
 }
 
 /* Place every domain's moving walls for the motions mv, then wrap the periodic axes. */
 static void walls_wrap_all(run_set *set, const vres_motion_state *mv)
 {
+    const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) set->b[k].move_walls(&set->b[k], mv);
     for (size_t k = 0; k < set->n; k++) set->b[k].wrap(&set->b[k]);
+    vres_prof_add(&set->prof, VRES_PROF_WALLS, t0);
 }
 
 /* mDBC wall densities (and slip velocities) in every domain for the state the step ends with. */
 static void mdbc_all(run_set *set)
 {
+    const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) set->b[k].mdbc(&set->b[k]);
+    vres_prof_add(&set->prof, VRES_PROF_MDBC, t0);
 }
 
 /* The first fatal particle of any domain after the predictor: its slot, (size_t)-1 when none
  * (*k its domain). */
 static size_t check_all(run_set *set, size_t *k)
 {
-    for (*k = 0; *k < set->n; (*k)++) {
-        size_t nout, bad = set->b[*k].check(&set->b[*k], &nout);
-        if (bad != (size_t)-1) return bad;
+    const double t0 = vres_prof_now();
+    size_t bad = (size_t)-1;
+    for (*k = 0; *k < set->n && bad == (size_t)-1; (*k)++) {
+        size_t nout;
+        bad = set->b[*k].check(&set->b[*k], &nout);
     }
-    return (size_t)-1;
+    if (bad != (size_t)-1) (*k)--;
+    vres_prof_add(&set->prof, VRES_PROF_CHECK, t0);
+    return bad;
+}
+
+/* The predictor (dt: the step) or, with corrector 1, the corrector of every domain (shift: with
+ * the shifting displacement). */
+static void integrate_all(run_set *set, double dt, int corrector, int shift)
+{
+    const double t0 = vres_prof_now();
+    for (size_t k = 0; k < set->n; k++)
+        if (corrector) set->b[k].correct(&set->b[k], dt, shift);
+        else set->b[k].predict(&set->b[k], dt);
+    vres_prof_add(&set->prof, VRES_PROF_INTEGRATE, t0);
+}
+
+/* The coupling's exchange at the end of a step that ended at t after dt (s). VRES_RUN_OK, or
+ * VRES_RUN_FAIL after printing why. */
+static int exchange_all(run_set *set, const run_cfg *c, double t, double dt)
+{
+    const double t0 = vres_prof_now();
+    const int rc = vres_couple_exchange(set, c, t, dt) != 0 ? VRES_RUN_FAIL : VRES_RUN_OK;
+    vres_prof_add(&set->prof, VRES_PROF_COUPLE, t0);
+    return rc;
 }
 
 /* One Symplectic step from time t (step `step`) of every domain, with the forces already
@@ -142,7 +179,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
 {
     double amax, visc;
     size_t kmin, k;
-    for (k = 0; k < set->n; k++) set->b[k].predict(&set->b[k], dt);
+    integrate_all(set, dt, 0, 0);
     vres_floats_step(m->fl, set->b, set->n, dt, VRES_FLOAT_PREDICT); /* with the step start's forces */
     wall_motion(s, m, t + 0.5 * dt);
     walls_wrap_all(set, m->mv);
@@ -153,8 +190,10 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
        neighbour sees them; the corrector decides (they are excluded after the step) */
     if (sort_all(set, c, 1, 0, t + 0.5 * dt) != 0) return VRES_RUN_FAIL;
     forces_all(set, c, c->shift != 0, &kmin, &amax, &visc);
+    double t0 = vres_prof_now();
     if (c->shift && vres_couple_shift(set) != 0) return VRES_RUN_FAIL;
-    for (k = 0; k < set->n; k++) set->b[k].correct(&set->b[k], dt, c->shift != 0);
+    vres_prof_add(&set->prof, VRES_PROF_COUPLE, t0);
+    integrate_all(set, dt, 1, c->shift != 0);
     vres_floats_step(m->fl, set->b, set->n, dt, VRES_FLOAT_CORRECT);
     wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);
@@ -162,19 +201,21 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
        state the step ends with (the cells of the predicted state still hold every neighbour
        but those at the kernel's edge, where W vanishes) */
     mdbc_all(set);
-    return vres_couple_exchange(set, c, t + dt, dt) != 0 ? VRES_RUN_FAIL : VRES_RUN_OK;
+    return exchange_all(set, c, t + dt, dt);
 }
 
 /* One Verlet step (an Euler step when euler) from time t of every domain, with the forces
  * already evaluated: the step, the walls, mDBC, then the coupling's exchange. */
 static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, double dt, int euler)
 {
+    const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) set->b[k].verlet(&set->b[k], dt, euler, c->shift != 0);
     vres_floats_step(m->fl, set->b, set->n, dt, euler ? VRES_FLOAT_EULER : VRES_FLOAT_VERLET);
+    vres_prof_add(&set->prof, VRES_PROF_INTEGRATE, t0);
     wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);
     mdbc_all(set);
-    return vres_couple_exchange(set, c, t + dt, dt) != 0 ? VRES_RUN_FAIL : VRES_RUN_OK;
+    return exchange_all(set, c, t + dt, dt);
 }
 
 /* Anchor every domain's moving walls where they are at time t (s), a snapshot's: a restart
@@ -232,7 +273,9 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     else if (!restarted && vres_couple_start(set, c) != 0) rc = VRES_RUN_FAIL;
     else if (!restarted) {
         r->next_due = 1;
+        const double tp = vres_prof_now();
         if (vres_run_output(s, set, c, r, f, &clk, t, step, 0) != 0) rc = VRES_RUN_FAIL;
+        vres_prof_add(&set->prof, VRES_PROF_OUTPUT, tp);
     }
     while (rc == VRES_RUN_OK && t < c->tmax * (1 - 1e-12)) {
         double amax, visc;
@@ -253,8 +296,10 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
             rc = step_verlet(s, set, c, &m, t, dt, euler);
         } else rc = step_symplectic(s, set, c, r, f, &m, t, step, dt);
         if (rc != VRES_RUN_OK) break;
-        double nex = r->nexcluded;
-        if ((rc = vres_run_after_step(s, set, c, r, f, t + dt, step + 1, t, step)) != VRES_RUN_OK) break;
+        double nex = r->nexcluded, tp = vres_prof_now();
+        rc = vres_run_after_step(s, set, c, r, f, t + dt, step + 1, t, step);
+        tp = vres_prof_add(&set->prof, VRES_PROF_CHECK, tp);
+        if (rc != VRES_RUN_OK) break;
         vres_floats_sync(m.fl, s); /* the bodies' state in the store (the snapshots') once the step holds */
         sorted = set->couple && r->nexcluded == nex;
         if (r->nexcluded != nex) {
@@ -265,6 +310,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         t += dt;
         step++;
         vres_run_progress(c, &clk, s->time, t, step, dt, 0);
+        tp = vres_prof_now();
         if (t >= (r->t0 + r->next_due * c->tout) * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12)) {
             while (r->t0 + r->next_due * c->tout <= t * (1 + 1e-9)) r->next_due++;
             if (vres_run_output(s, set, c, r, f, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
@@ -278,9 +324,13 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
                 rc = VRES_RUN_FAIL;
             }
         }
+        vres_prof_add(&set->prof, VRES_PROF_OUTPUT, tp);
     }
     vres_run_progress(c, &clk, s->time, t, step, dt, 1);
+    double tp = vres_prof_now();
     if (rc == VRES_RUN_OK && vres_run_checkpoint(s, set, c, r, f->dir, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+    vres_prof_add(&set->prof, VRES_PROF_OUTPUT, tp);
+    set->prof.loop_s = vres_run_wall_now() - clk.start, set->prof.steps = step - step_start;
     if (rc == VRES_RUN_OK)
         vres_info("reached t = %.6g s in %ld steps, %.3g s wall time, %d snapshots in %s%s", t, step - step_start,
                   vres_run_wall_now() - clk.start, r->next_snap - nsnap0, f->dir,
@@ -366,6 +416,30 @@ static int open_ledger(run_files *f, const char *dir)
     else if (fresh) fputs(vres_couple_ledger_header, f->ledger);
     free(path);
     return f->ledger ? 0 : -1;
+}
+
+/* Print the time loop's phase times p (--profile) and write them to RUNDIR/profile.tsv
+ * (atomically). 0, or -1 after printing why. */
+static int write_profile(const vres_prof *p, const char *dir)
+{
+    vres_info("time per phase of the step (wall s, %% of the time loop, us per step):");
+    for (int ph = 0; ph < VRES_PROF_N; ph++)
+        vres_info("  %-10s %9.4g s %5.1f%% %10.4g us", vres_prof_name(ph), p->s[ph],
+                  p->loop_s > 0 ? 100 * p->s[ph] / p->loop_s : 0, p->steps > 0 ? 1e6 * p->s[ph] / p->steps : 0);
+    char *path = vres_xasprintf("%s/profile.tsv", dir), *tmp = vres_xasprintf("%s/.profile.tsv.tmp", dir);
+    FILE *out = fopen(tmp, "w");
+    int rc = out ? 0 : -1;
+    if (out) {
+        vres_prof_write(p, out);
+        if (fclose(out) != 0 || rename(tmp, path) != 0) rc = -1;
+    }
+    if (rc != 0) {
+        vres_error("%s: cannot write: %s", path, strerror(errno));
+        remove(tmp);
+    }
+    free(path);
+    free(tmp);
+    return rc;
 }
 
 /* Check, pick the device, prepare the run directory and its table, then run the time loop. */
@@ -468,6 +542,7 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     sigaction(SIGTERM, &sa, &old_term);
     stop_asked = 0;
     int rc = time_loop(s, &set, &c, &r, &f, o->checkpoint, o->restart);
+    if (rc == VRES_RUN_OK && o->profile && write_profile(&set.prof, o->rundir) != 0) rc = VRES_RUN_FAIL;
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
     for (size_t k = 0; k < set.n; k++)

@@ -27,6 +27,7 @@ typedef struct vres_run_opts {
                                run's, else auto */
     const char *vres_flux;  /* --vres-flux: how interface segments measure mass (vres_couple_flux_parse);
                                NULL: VRES_FLUX, else the restarted run's, else the default */
+    int profile;            /* --profile: print the time per phase of the step, write RUNDIR/profile.tsv */
 } vres_run_opts;
 
 /* Check that the store is one this solver runs (refusing anything it would have to ignore)

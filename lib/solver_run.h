@@ -8,6 +8,7 @@
 
 #include <stdio.h>
 
+#include "profile.h"
 #include "solver.h"
 #include "solver_int.h"
 #include "store.h"
@@ -42,6 +43,7 @@ typedef struct run_set {
     double *dt;           /* [n] each domain's own stable time step at the last force evaluation (s) */
     size_t *nout;         /* [n] each domain's particles outside its box at the last check */
     vres_couple *couple;  /* the coupling of the domains (solver_couple.c); NULL with one domain */
+    vres_prof prof;       /* wall time spent in each phase of the step so far (this run, not before a restart) */
 } run_set;
 
 /* The run's progress between outputs. */

@@ -14,9 +14,11 @@
 
 static const char synopsis[] =
     "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
-    "         [--vres-order 1|2|auto] [--vres-flux capped|interp|balanced|crossing] STORE -o RUNDIR\n"
+    "         [--vres-order 1|2|auto] [--vres-flux capped|interp|balanced|crossing] [--profile]\n"
+    "         STORE -o RUNDIR\n"
     "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
-    "         [--vres-order 1|2|auto] [--vres-flux capped|interp|balanced|crossing] --restart SNAP [-o RUNDIR]\n";
+    "         [--vres-order 1|2|auto] [--vres-flux capped|interp|balanced|crossing] [--profile]\n"
+    "         --restart SNAP [-o RUNDIR]\n";
 
 static const vres_opt options[] = {
     {"tmax", 0, VRES_ARG_POSDOUBLE, 0},       /* end time (s) instead of the store's TimeMax */
@@ -27,6 +29,7 @@ static const vres_opt options[] = {
     {"restart", 0, VRES_ARG_STR, 0},          /* snapshot or checkpoint of a run to continue */
     {"vres-order", 0, VRES_ARG_STR, 0},       /* order of the coupling's buffer interpolation: 1, 2 or auto */
     {"vres-flux", 0, VRES_ARG_STR, 0},        /* how interface segments measure mass: capped, interp, balanced, crossing */
+    {"profile", 0, VRES_ARG_NONE, 0},         /* print the time per phase of the step, write RUNDIR/profile.tsv */
     {NULL, 0, VRES_ARG_NONE, 0},
 };
 
@@ -75,7 +78,8 @@ int main(int argc, char **argv)
                        vres_cli_get(&cli, "threads") ? atoi(vres_cli_get(&cli, "threads")) : 0,
                        cli.output ? cli.output : dirname(snapdir), /* a restart continues in the snapshot's directory */
                        cli.cmdline, restart != NULL, vres_cli_double(&cli, "checkpoint", 300),
-                       vres_cli_get(&cli, "vres-order"), vres_cli_get(&cli, "vres-flux")};
+                       vres_cli_get(&cli, "vres-order"), vres_cli_get(&cli, "vres-flux"),
+                       vres_cli_flag(&cli, "profile")};
     vres_store *s = vres_store_read(restart ? restart : cli.pos[0]);
     int rc = s ? vres_solver_run(s, &o) : VRES_RUN_FAIL;
     vres_store_free(s);
