@@ -20,10 +20,12 @@ extern "C" { /* also read by the CUDA sources (.cu, compiled as C++) */
 /* What placing a moving wall particle needs of a body: which particles are its own. */
 typedef struct vres_wall_body {
     int mkbound;          /* the body's mkbound: its particles' mk */
-    int moving;           /* 1 for a body with a prescribed motion (VRES_MOVING) */
+    int moving;           /* 1 for a body placed by a transform each step: a prescribed motion (VRES_MOVING)
+                             or a floating body's integrated motion (VRES_FLOATING) */
+    int floating;         /* 1 for a floating body (its particles' forces are summed for it) */
 } vres_wall_body;
 
-/* Moving wall particle i (other types are left alone) to its body's transform: position
+/* Moving or floating wall particle i (other types are left alone) to its body's transform: position
  * pos[3i..] = R xr[3i..] + d (m) from its reference position xr, velocity vel[3i..] (m/s) the
  * rigid field there, kept in mvel (the walls' own velocity, which mDBC's slip modes overwrite
  * in vel) too when mvel is not NULL. The body is the first of the nb bodies that moves and
@@ -32,7 +34,7 @@ VRES_HD static inline void vres_move_wall_one(size_t i, const uint8_t *type, con
                                               double *pos, float *vel, float *mvel, const vres_motion_state *mv,
                                               const vres_wall_body *body, size_t nb)
 {
-    if (!vres_type_is_moving(type[i])) return;
+    if (!vres_type_is_placed(type[i])) return;
     size_t k = 0;
     while (k < nb && !(body[k].moving && body[k].mkbound == mk[i])) k++;
     if (k == nb) return; /* the solver refuses such a particle at its start */

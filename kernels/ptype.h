@@ -11,7 +11,9 @@
  *            around it (it completes their kernel support at an interface), never a wall;
  *            its own rates are discarded and it is advected with its current velocity;
  *   walls    fixed, moving (prescribed motion) and floating particles: DBC or mDBC boundary
- *            particles, whose density alone the continuity equation (or mDBC) sets;
+ *            particles, whose density alone the continuity equation (or mDBC) sets; a floating
+ *            particle also sums the acceleration its fluid and its non-floating walls give it
+ *            (its body's force, lib/solver_float.c), and its body places it each step;
  *   inlet    particles of an inlet/outlet zone (inout.h): like buffer particles a fluid neighbour
  *            whose own rates are discarded and which is advected with its velocity, but their
  *            state is imposed by the zone (or extrapolated from the fluid beside it). */
@@ -69,6 +71,19 @@ VRES_HD static inline int vres_type_is_fixed(int t)
 VRES_HD static inline int vres_type_is_moving(int t)
 {
     return t == VRES_PTYPE_MOVING;
+}
+
+/* 1 for a particle of a floating rigid body (its body's motion is integrated from the forces). */
+VRES_HD static inline int vres_type_is_floating(int t)
+{
+    return t == VRES_PTYPE_FLOATING;
+}
+
+/* 1 for a wall particle that its body places each step by a rigid transform: a prescribed
+ * motion (moving) or the integrated motion of a floating body. */
+VRES_HD static inline int vres_type_is_placed(int t)
+{
+    return t == VRES_PTYPE_MOVING || t == VRES_PTYPE_FLOATING;
 }
 
 /* 1 when a particle of type t is a fluid neighbour of the particles around it (fluid, buffer

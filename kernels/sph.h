@@ -41,6 +41,11 @@
 #define VRES_DDT_FOURTAKAS 2 /* Fourtakas et al. (2019): hydrostatic part removed, fluid-fluid only */
 
 /* Viscosity variants (parameter ViscoTreatment). */
+/* The walls argument of the interaction: which wall code the loop carries. */
+#define VRES_WALLS_NONE 0     /* no wall particles: every neighbour is fluid */
+#define VRES_WALLS_DBC 1      /* walls (DBC or mDBC), none floating */
+#define VRES_WALLS_FLOATING 2 /* walls, some of them floating bodies' (their forces are summed) */
+
 #define VRES_VISC_ARTIFICIAL 1 /* Monaghan's artificial viscosity, alpha = Visco */
 #define VRES_VISC_LAMINAR 3    /* laminar viscosity (Lo & Shao 2002), nu = Visco (m^2/s) */
 
@@ -202,10 +207,23 @@ VRES_HD static inline void vres_sph_shift_sums(size_t a, const vres_cell_range *
     shiftv[4 * a + 3] = divr;
 }
 
+/* 1 when wall particles of types ta and tb interact (walls VRES_WALLS_FLOATING only): one of
+ * them floating and the other not, so that a body meets the walls and other bodies' walls (a
+ * pair within one body adds nothing to its body's force: its terms cancel in the sum); two
+ * floating bodies do not meet each other (body-body contact is not modelled). */
+VRES_HD static inline int vres_sph_walls_meet(const int walls, int ta, int tb)
+{
+    return walls == VRES_WALLS_FLOATING && vres_type_is_floating(ta) != vres_type_is_floating(tb);
+}
+
 /* The interaction of particle a with its neighbours in the cells g: for a fluid particle the
  * acceleration ace[3a] (m/s^2, gravity included), density rate ar[a] (kg/m^3/s) and the
  * largest viscous rate visc[a] (1/s); for a wall particle (DBC) ar[a] from its fluid (and
- * buffer) neighbours only, ace zero; for a buffer particle all three zero (its state is the
+ * buffer) neighbours only, ace zero; with walls VRES_WALLS_FLOATING a floating body's particle
+ * also sums, into ace (gravity left out: its body carries it), the pressure and viscous terms
+ * of its fluid and non-floating wall neighbours (with the walls' viscosity, as they see it), and
+ * floating and non-floating walls add each other to their density rates (vres_sph_walls_meet),
+ * so that a body resting on a floor is held by DBC's pressure; for a buffer particle all three zero (its state is the
  * coupling's), while it enters its neighbours' sums as fluid (vres_type_acts_fluid). Positions, velocities, densities, pressures, masses and types
  * are the domain's arrays in cell order (slot s of g is particle s). ddt is a VRES_DDT_*
  * kind, walls 1 when the domain has wall particles, visc a VRES_VISC_* kind; the variants
@@ -230,6 +248,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(type[a]);
+    const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(type[a]);
     const double xa[3] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
     const double va[3] = {vel[3 * a], vel[3 * a + 1], vel[3 * a + 2]};
     const double rhoa = rho[a], inv_rhoa = 1.0 / rhoa, pa = press[a];
@@ -240,7 +259,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
     for (int c = 0; c < m; c++)
         for (size_t b = nb[c].begin; b < nb[c].end; b++) {
             const int wall_b = walls && !vres_type_acts_fluid(type[b]);
-            if (!fluid_a && wall_b) continue; /* DBC: walls do not interact with walls */
+            /* DBC: walls do not interact with walls, but for a floating body's against others' */
+            if (!fluid_a && wall_b && !vres_sph_walls_meet(walls, type[a], type[b])) continue;
             double dx[3] = {xa[0] - (pos[3 * b] + nb[c].shift[0]), xa[1] - (pos[3 * b + 1] + nb[c].shift[1]),
                             xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
             double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
@@ -250,7 +270,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
             double dv[3] = {va[0] - vel[3 * b], va[1] - vel[3 * b + 1], va[2] - vel[3 * b + 2]};
             double mb = mass[b], rhob = rho[b], inv_r2eta = 1.0 / (r2 + C.eta2);
             arp += mb * (dv[0] * fr[0] + dv[1] * fr[1] + dv[2] * fr[2]);
-            if (!fluid_a) {
+            if (!fluid_a && !float_a) {
                 double rate = (dx[0] * dv[0] + dx[1] * dv[1] + dx[2] * dv[2]) * inv_r2eta;
                 vmax = rate > vmax ? rate : vmax;
                 continue;
@@ -258,11 +278,12 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
             double inv_rhob = 1.0 / rhob;
             vres_sph_pair_pressure(mb, pa, press[b], inv_rhoa, inv_rhob, fr, acc);
             double rate = viscosity == VRES_VISC_LAMINAR
-                              ? vres_sph_pair_laminar(wall_b ? C.nu_wall : C.nu, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc)
-                              : vres_sph_pair_visc(&C, wall_b ? C.alpha_wall : C.alpha, mb, rhoa, rhob, dx, dv,
-                                                   inv_r2eta, fr, acc);
+                              ? vres_sph_pair_laminar(wall_b || float_a ? C.nu_wall : C.nu, mb, rhoa, rhob, dx, dv,
+                                                      inv_r2eta, fr, acc)
+                              : vres_sph_pair_visc(&C, wall_b || float_a ? C.alpha_wall : C.alpha, mb, rhoa, rhob, dx,
+                                                   dv, inv_r2eta, fr, acc);
             vmax = rate > vmax ? rate : vmax;
-            if (ddt != VRES_DDT_NONE && !wall_b)
+            if (ddt != VRES_DDT_NONE && !wall_b && !float_a)
                 diff += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob, dx, r2, inv_r2eta, F);
             if (shift) {
                 double vol = mb * inv_rhob;
@@ -281,9 +302,9 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
     }
     ar[a] = arp + diff;
     visc[a] = vmax;
-    ace[3 * a] = fluid_a ? acc[0] + C.g[0] : 0.0;
-    ace[3 * a + 1] = fluid_a ? acc[1] + C.g[1] : 0.0;
-    ace[3 * a + 2] = fluid_a ? acc[2] + C.g[2] : 0.0;
+    ace[3 * a] = fluid_a ? acc[0] + C.g[0] : float_a ? acc[0] : 0.0;
+    ace[3 * a + 1] = fluid_a ? acc[1] + C.g[1] : float_a ? acc[1] : 0.0;
+    ace[3 * a + 2] = fluid_a ? acc[2] + C.g[2] : float_a ? acc[2] : 0.0;
 }
 
 /* A buffer particle i advected over time tau (s) from pos0 with its current velocity, which the
@@ -419,7 +440,10 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
     VRES_SPH_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity)          \
     VRES_SPH_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity)                     \
     VRES_SPH_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity)          \
-    VRES_SPH_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)
+    VRES_SPH_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)          \
+    VRES_SPH_VARIANT(prefix##flt, VRES_DDT_NONE, 2, viscosity)                     \
+    VRES_SPH_VARIANT(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity)          \
+    VRES_SPH_VARIANT(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity)
 
 /* The same with shifting sums: VRES_SPH_SHIFT_VARIANT(name, ddt, walls, visc) defines name_cpu /
  * name_cuda taking shiftv [4n] after visc. */
@@ -445,7 +469,10 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
     VRES_SPH_SHIFT_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity)          \
     VRES_SPH_SHIFT_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity)                     \
     VRES_SPH_SHIFT_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)
+    VRES_SPH_SHIFT_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)          \
+    VRES_SPH_SHIFT_VARIANT(prefix##flt, VRES_DDT_NONE, 2, viscosity)                     \
+    VRES_SPH_SHIFT_VARIANT(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity)          \
+    VRES_SPH_SHIFT_VARIANT(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity)
 
 VRES_SPH_VARIANTS(vres_sph_, VRES_VISC_ARTIFICIAL)        /* vres_sph_plain ... vres_sph_dbc_fourtakas */
 VRES_SPH_VARIANTS(vres_sph_laminar_, VRES_VISC_LAMINAR)   /* vres_sph_laminar_plain ... */
@@ -528,6 +555,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);
+    const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(P->type[a]);
     const double xa = P->x[a], za = P->z[a], vxa = P->vx[a], vza = P->vz[a];
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
     const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2;
@@ -604,10 +632,10 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
             Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i];
             Q.vx[np] = P->vx[b], Q.vz[np] = P->vz[b], Q.mb[np] = P->mass[b];
             Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
-            if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b ? visc_wall : visc_fluid;
+            if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b || float_a ? visc_wall : visc_fluid;
             if (shift && wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(P->type[b]))))
                 noshift = 1;
-            np += fluid_a || !wall_b;
+            np += fluid_a || !wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b]);
         }
         /* 4: the pair terms. Where vres_sph_interact skips a term, a select of one of its
            inputs makes it zero: a select of the term itself would have the compiler compute the
@@ -655,12 +683,13 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
                 T.div[j] = vol * (dx * frx + dz * frz);
             }
         }
-        /* 5: the sums, in pair order (a wall particle a sums only its density rate) */
+        /* 5: the sums, in pair order (a wall particle a sums only its density rate, a floating
+           one its acceleration too, without density diffusion) */
         for (int j = 0; j < np; j++) {
             arp += T.arp[j];
             vmax = T.rate[j] > vmax ? T.rate[j] : vmax;
         }
-        if (fluid_a)
+        if (fluid_a || float_a)
             for (int j = 0; j < np; j++) {
                 accx -= T.px[j];
                 accz -= T.pz[j];
@@ -671,7 +700,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
                     accx -= T.vx[j];
                     accz -= T.vz[j];
                 }
-                if (ddt != VRES_DDT_NONE) diff += T.diff[j];
+                if (ddt != VRES_DDT_NONE && !float_a) diff += T.diff[j];
                 if (shift) {
                     gcx += T.gx[j];
                     gcz += T.gz[j];
@@ -687,9 +716,9 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
     }
     ar[a] = arp + diff;
     visc[a] = vmax;
-    ace[3 * a] = fluid_a ? accx + C->g[0] : 0.0;
+    ace[3 * a] = fluid_a ? accx + C->g[0] : float_a ? accx : 0.0;
     ace[3 * a + 1] = fluid_a ? C->g[1] : 0.0;
-    ace[3 * a + 2] = fluid_a ? accz + C->g[2] : 0.0;
+    ace[3 * a + 2] = fluid_a ? accz + C->g[2] : float_a ? accz : 0.0;
 }
 
 /* vres_sph_interact2d over the particles of cell `cell` of g (cell == g->ncells: the slots
@@ -750,7 +779,10 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vr
     VRES_SPH_VARIANT2D(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity, shift)          \
     VRES_SPH_VARIANT2D(prefix##dbc, VRES_DDT_NONE, 1, viscosity, shift)                     \
     VRES_SPH_VARIANT2D(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity, shift)          \
-    VRES_SPH_VARIANT2D(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity, shift)
+    VRES_SPH_VARIANT2D(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity, shift)          \
+    VRES_SPH_VARIANT2D(prefix##flt, VRES_DDT_NONE, 2, viscosity, shift)                     \
+    VRES_SPH_VARIANT2D(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity, shift)          \
+    VRES_SPH_VARIANT2D(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity, shift)
 
 VRES_SPH_VARIANTS2D(vres_sph2d_, VRES_VISC_ARTIFICIAL, 0)               /* vres_sph2d_plain ... */
 VRES_SPH_VARIANTS2D(vres_sph2d_laminar_, VRES_VISC_LAMINAR, 0)          /* vres_sph2d_laminar_plain ... */

@@ -12,7 +12,7 @@
 /* What picks an interaction variant: the options a scene fixes for its whole run. */
 typedef struct vres_sph_pick {
     int viscosity;      /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR */
-    int walls;          /* 1 when the domain has wall particles */
+    int walls;          /* VRES_WALLS_*: none, walls, walls with floating bodies */
     int ddt;            /* VRES_DDT_* density diffusion kind */
 } vres_sph_pick;
 
@@ -31,34 +31,35 @@ typedef void (*vres_interact_shift_fn)(size_t n, const vres_cells *g, const doub
 typedef void (*vres_interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
                                    double *ace, double *ar, double *visc, double *shiftv);
 
-/* The six loops of one kind for one device: [walls][DensityDT]. */
-#define VRES_SPH_ROW6(pre, sfx)                                                                        \
+/* The nine loops of one kind for one device: [walls][DensityDT]. */
+#define VRES_SPH_ROW9(pre, sfx)                                                                        \
     {{pre##plain##sfx, pre##molteni##sfx, pre##fourtakas##sfx},                                        \
-     {pre##dbc##sfx, pre##dbc_molteni##sfx, pre##dbc_fourtakas##sfx}}
+     {pre##dbc##sfx, pre##dbc_molteni##sfx, pre##dbc_fourtakas##sfx},                                  \
+     {pre##flt##sfx, pre##flt_molteni##sfx, pre##flt_fourtakas##sfx}}
 
 /* pick_interaction (3D, no shifting sums), pick_interaction_shift (3D, with them) and
  * pick_interaction2d (2D, shift 0 or 1) for the scene's options p, over the loops with suffix
- * sfx: no diffusion code when DensityDT=0, no wall tests without walls, only the viscosity
- * asked for. */
+ * sfx: no diffusion code when DensityDT=0, no wall tests without walls, no floating-body terms
+ * without floating bodies, only the viscosity asked for. */
 #define VRES_SPH_PICKERS(sfx)                                                                          \
     static vres_interact_fn pick_interaction(vres_sph_pick p)                                          \
     {                                                                                                  \
-        static const vres_interact_fn table[2][2][3] = {VRES_SPH_ROW6(vres_sph_, sfx),                 \
-                                                        VRES_SPH_ROW6(vres_sph_laminar_, sfx)};        \
-        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls != 0][p.ddt];                           \
+        static const vres_interact_fn table[2][3][3] = {VRES_SPH_ROW9(vres_sph_, sfx),                 \
+                                                        VRES_SPH_ROW9(vres_sph_laminar_, sfx)};        \
+        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt];                           \
     }                                                                                                  \
     static vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                              \
     {                                                                                                  \
-        static const vres_interact_shift_fn table[2][2][3] = {VRES_SPH_ROW6(vres_sph_shift_, sfx),     \
-                                                              VRES_SPH_ROW6(vres_sph_shift_laminar_, sfx)}; \
-        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls != 0][p.ddt];                           \
+        static const vres_interact_shift_fn table[2][3][3] = {VRES_SPH_ROW9(vres_sph_shift_, sfx),     \
+                                                              VRES_SPH_ROW9(vres_sph_shift_laminar_, sfx)}; \
+        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt];                           \
     }                                                                                                  \
     static vres_interact2d_fn pick_interaction2d(vres_sph_pick p, int shift)                           \
     {                                                                                                  \
-        static const vres_interact2d_fn table[2][2][2][3] = {                                          \
-            {VRES_SPH_ROW6(vres_sph2d_, sfx), VRES_SPH_ROW6(vres_sph2d_laminar_, sfx)},                \
-            {VRES_SPH_ROW6(vres_sph2d_shift_, sfx), VRES_SPH_ROW6(vres_sph2d_shift_laminar_, sfx)}};   \
-        return table[shift][p.viscosity == VRES_VISC_LAMINAR][p.walls != 0][p.ddt];                    \
+        static const vres_interact2d_fn table[2][2][3][3] = {                                          \
+            {VRES_SPH_ROW9(vres_sph2d_, sfx), VRES_SPH_ROW9(vres_sph2d_laminar_, sfx)},                \
+            {VRES_SPH_ROW9(vres_sph2d_shift_, sfx), VRES_SPH_ROW9(vres_sph2d_shift_laminar_, sfx)}};   \
+        return table[shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt];                    \
     }
 
 #endif

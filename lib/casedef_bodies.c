@@ -92,6 +92,7 @@ static vres_body *new_body(cd_ctx *c, xmlNodePtr e, vres_store *s, int mk, int k
     memset(b, 0, sizeof *b);
     b->mkbound = mk;
     b->kind = kind;
+    b->quat[0] = 1; /* placed as drawn: no rotation yet */
     for (int a = 0; a < 3; a++) {
         b->center[a] = sum[a] / (double)n;
         b->transdof[a] = b->rotdof[a] = 1;

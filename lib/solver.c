@@ -19,6 +19,7 @@
 #include "preflight.h"
 #include "solver_couple.h"
 #include "solver_inout.h"
+#include "solver_float.h"
 #include "solver_int.h"
 #include "solver_motion.h"
 #include "solver_run.h"
@@ -40,6 +41,7 @@ typedef struct run_motion {
     double t0;              /* time of the anchor (s) */
     vres_motion_state *mv0; /* [nbodies] each body's motion at t0 */
     vres_motion_state *mv;  /* [nbodies] the transforms of the last wall_motion */
+    vres_floats *fl;        /* the floating bodies (solver_float.h), NULL without them */
 } run_motion;
 
 /* The moving bodies' transforms at time t (s) relative to their placement at the anchor's time
@@ -67,6 +69,7 @@ static void wall_motion(const vres_store *s, run_motion *rm, double t)
         memcpy(m->R, R, sizeof R);
         memcpy(m->d, dd, sizeof dd);
     }
+    vres_floats_transforms(rm->fl, rm->mv); /* floating bodies where their integration has them */
 }
 
 /* ---- the phases of a step: one backend operation over every domain ---- */
@@ -178,6 +181,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
     double amax, visc;
     size_t kmin, k;
     integrate_all(set, dt, 0, 0);
+    vres_floats_step(m->fl, set->b, set->n, dt, VRES_FLOAT_PREDICT); /* with the step start's forces */
     wall_motion(s, m, t + 0.5 * dt);
     walls_wrap_all(set, m->mv);
     size_t badmid = check_all(set, &k);
@@ -191,6 +195,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
     if (c->shift && vres_couple_shift(set) != 0) return VRES_RUN_FAIL;
     vres_prof_add(&set->prof, VRES_PROF_COUPLE, t0);
     integrate_all(set, dt, 1, c->shift != 0);
+    vres_floats_step(m->fl, set->b, set->n, dt, VRES_FLOAT_CORRECT);
     wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);
     /* mDBC wall densities follow the fluid, not the continuity equation: set them for the
@@ -206,6 +211,7 @@ static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion
 {
     const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) set->b[k].verlet(&set->b[k], dt, euler, c->shift != 0);
+    vres_floats_step(m->fl, set->b, set->n, dt, euler ? VRES_FLOAT_EULER : VRES_FLOAT_VERLET);
     vres_prof_add(&set->prof, VRES_PROF_INTEGRATE, t0);
     wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);
@@ -220,6 +226,7 @@ static void anchor_walls(const vres_store *s, run_set *set, run_motion *m, doubl
 {
     if (!s->nbodies) return;
     for (size_t k = 0; k < set->n; k++) set->b[k].anchor_walls(&set->b[k]);
+    vres_floats_anchor(m->fl);
     m->t0 = t;
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m->mv0[k]);
 }
@@ -260,7 +267,8 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     int rc = VRES_RUN_OK, nsnap0 = r->next_snap;
     int sorted = 0; /* 1 when every domain is in cell order for its positions now: after a coupled
                        step's exchange (which sorts last), when no particle was excluded since */
-    run_motion m = {t, vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv)};
+    run_motion m = {t, vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv),
+                    vres_floats_open(s, c->g)};
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m.mv0[k]);
     if (check_start(s, set, c, &m, t, step) != 0) rc = VRES_RUN_FAIL;
     else if (!restarted && vres_couple_start(set, c) != 0) rc = VRES_RUN_FAIL;
@@ -275,6 +283,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         size_t kmin;
         if (sort_all(set, c, 0, sorted, t) != 0) { rc = VRES_RUN_FAIL; break; }
         save_start_all(set);
+        vres_floats_begin(m.fl);
         dt = forces_all(set, c, c->verlet && c->shift != 0, &kmin, &amax, &visc);
         if (!(dt >= c->dtmin)) {
             vres_error("unstable at step %ld, t = %.6g s: time step %g s below DtMin %g s (largest acceleration "
@@ -292,6 +301,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         rc = vres_run_after_step(s, set, c, r, f, t + dt, step + 1, t, step);
         tp = vres_prof_add(&set->prof, VRES_PROF_CHECK, tp);
         if (rc != VRES_RUN_OK) break;
+        vres_floats_sync(m.fl, s); /* the bodies' state in the store (the snapshots') once the step holds */
         sorted = set->couple && r->nexcluded == nex;
         if (r->nexcluded != nex) {
             if (c->verlet) verlet_count = c->verlet_steps - 1; /* the previous step is gone: Euler next */
@@ -339,6 +349,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     }
     free(m.mv0);
     free(m.mv);
+    vres_floats_close(m.fl);
     return rc;
 }
 
@@ -462,6 +473,18 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }
+    /* floating bodies run on the CPU backend only, for now (as the coupling below) */
+    size_t nfloating = 0;
+    for (size_t k = 0; k < set.n; k++) nfloating += set.dom[k].nfloating;
+    if (nfloating && dev == VRES_DEV_CUDA) {
+        if (o->device && !strcmp(o->device, "cuda")) {
+            vres_error("floating bodies: the CUDA backend does not run them yet; use --device cpu");
+            free_set(&set, 0);
+            return VRES_RUN_FAIL;
+        }
+        vres_info("floating bodies run on the CPU backend: using the CPU");
+        dev = VRES_DEV_CPU;
+    }
     /* the coupling of several domains and inlet/outlet zones run on the CPU backend only, for
        now: --device auto takes the CPU for them, --device cuda is refused before anything is
        written */
@@ -483,6 +506,11 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     if (vres_run_prepare_dir(o->rundir, o->restart, s->step, r.next_snap) != 0 ||
         open_backends(s, &set, &c, dev) != 0) {
         free_set(&set, 0);
+        return VRES_RUN_FAIL;
+    }
+    if (nfloating && !set.b[0].body_forces) {
+        vres_error("floating bodies: the %s backend does not run them yet; use --device cpu", set.b[0].name);
+        free_set(&set, 1);
         return VRES_RUN_FAIL;
     }
     if (set.n > 1 && !set.b[0].donor_view) {

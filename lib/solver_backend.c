@@ -28,12 +28,13 @@ vres_wall_body *vres_wall_bodies(const vres_store *s)
 {
     vres_wall_body *wb = vres_xcalloc(s->nbodies + 1, sizeof *wb);
     for (size_t k = 0; k < s->nbodies; k++)
-        wb[k].mkbound = s->body[k].mkbound, wb[k].moving = s->body[k].kind == VRES_MOVING;
+        wb[k].mkbound = s->body[k].mkbound, wb[k].moving = 1, wb[k].floating = s->body[k].kind == VRES_FLOATING;
     return wb;
 }
 
 vres_sph_pick vres_run_pick(const run_cfg *c, const run_dom *dc)
 {
-    vres_sph_pick p = {c->visco_kind, dc->nwall > 0, c->ddt};
+    vres_sph_pick p = {c->visco_kind, dc->nfloating ? VRES_WALLS_FLOATING : dc->nwall ? VRES_WALLS_DBC : VRES_WALLS_NONE,
+                       c->ddt};
     return p;
 }

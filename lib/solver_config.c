@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "log.h"
+#include "solver_float.h"
 #include "solver_motion.h"
 #include "solver_run.h"
 #include "track.h"
@@ -91,35 +92,36 @@ static int periodic_box(const vres_store *s, run_dom *c)
     return bad ? -1 : 0;
 }
 
-/* The index of the moving body whose mkbound is mk, or -1. */
-static int body_of(const vres_store *s, int mk)
+/* The index of the body of kind `kind` (VRES_MOVING or VRES_FLOATING) whose mkbound is mk, or -1. */
+static int body_of(const vres_store *s, int kind, int mk)
 {
     for (size_t k = 0; k < s->nbodies; k++)
-        if (s->body[k].kind == VRES_MOVING && s->body[k].mkbound == mk) return (int)k;
+        if (s->body[k].kind == kind && s->body[k].mkbound == mk) return (int)k;
     return -1;
 }
 
-/* Check the bodies: moving ones with a motion vres_motion_eval can follow, each moving wall
- * particle belonging to one; floating bodies refused. 0, or -1 after printing why. */
+/* Check the bodies: moving ones with a motion vres_motion_eval can follow, floating ones with
+ * a positive mass and an inertia that can turn them about their free axes (lib/solver_float.c),
+ * each moving or floating particle belonging to a body of its kind. 0, or -1 after printing why. */
 static int check_bodies(const vres_store *s)
 {
     int bad = 0;
     for (size_t k = 0; k < s->nbodies; k++) {
         const vres_body *b = &s->body[k];
-        if (b->kind == VRES_FLOATING)
-            vres_error("floating body mkbound %d: not implemented yet (vres-run moves walls with a prescribed "
-                       "motion only)", b->mkbound), bad = 1;
-        else if (b->kind != VRES_MOVING) vres_error("body mkbound %d of unknown kind %d", b->mkbound, b->kind), bad = 1;
+        if (b->kind == VRES_FLOATING) {
+            if (vres_float_check(b, s->dim) != 0) bad = 1;
+        } else if (b->kind != VRES_MOVING) vres_error("body mkbound %d of unknown kind %d", b->mkbound, b->kind), bad = 1;
         else if (vres_motion_check(b) != 0) bad = 1;
     }
     for (size_t k = 0; k < s->ndomains; k++) {
         const vres_domain *d = &s->dom[k];
-        for (size_t i = 0; i < d->n; i++)
-            if (vres_type_is_moving(d->type[i]) && body_of(s, d->mk[i]) < 0) {
-                vres_error("moving wall particle id %llu has mkbound %d, which no <motion> body moves",
-                           (unsigned long long)d->id[i], d->mk[i]);
-                return -1;
-            }
+        for (size_t i = 0; i < d->n; i++) {
+            int t = d->type[i], floating = vres_type_is_floating(t);
+            if (!vres_type_is_placed(t) || body_of(s, floating ? VRES_FLOATING : VRES_MOVING, d->mk[i]) >= 0) continue;
+            vres_error("%s particle id %llu has mkbound %d, which no %s body has", floating ? "floating" : "moving wall",
+                       (unsigned long long)d->id[i], d->mk[i], floating ? "<floating>" : "<motion>");
+            return -1;
+        }
     }
     return bad ? -1 : 0;
 }
@@ -143,13 +145,14 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
     dc->nfluid = count[VRES_FLUID];
     dc->nbuffer = count[VRES_BUFFER];
     dc->nmoving = count[VRES_MOVING];
-    dc->nwall = count[VRES_FIXED] + dc->nmoving;
+    dc->nfloating = count[VRES_FLOATING];
+    dc->nwall = count[VRES_FIXED] + dc->nmoving + dc->nfloating;
     /* a sub-domain may start dry (a refinement box where the flow arrives later) */
     if (!dc->nfluid && s->ndomains == 1) vres_error("the store has no fluid particles: nothing to run"), *bad = 1;
     for (int t = 0; t < VRES_NTYPES; t++) /* buffers only where a coupling gives them their state, inlets a zone */
-        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && !(t == VRES_BUFFER && s->ndomains > 1) &&
-            !(t == VRES_INLET && c->nzones > 0) && count[t])
-            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed and moving walls)",
+        if (t != VRES_FLUID && t != VRES_FIXED && t != VRES_MOVING && t != VRES_FLOATING &&
+            !(t == VRES_BUFFER && s->ndomains > 1) && !(t == VRES_INLET && c->nzones > 0) && count[t])
+            vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed, moving and floating walls)",
                        count[t], vres_ptype_name(t)), *bad = 1;
     /* a box that follows a body (lib/track.h) moves with a prescribed motion only */
     if (d->tracking_mk >= 0 && d->parent >= 0 && vres_track_body(s, d->tracking_mk) < 0) {
@@ -290,6 +293,14 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     else if (s->inout_xml && c->nzones <= 0)
         vres_error("the store keeps an <inout> element but no resolved zone (parameters inout_*): make it again with "
                    "this vres-gencase"), bad = 1;
+    for (size_t k = 0; k < set->n; k++)
+        if (set->dom[k].nfloating) { /* what floating bodies could be asked for beyond vres-run's SPH rigid bodies */
+            double v = vres_params_get(P, "RigidAlgorithm", 1);
+            if (v != 1) not_impl(&bad, "RigidAlgorithm", v, "floating bodies without SPH contact", "1 (SPH)");
+            if ((v = vres_params_get(P, "FtPause", 0)) != 0)
+                not_impl(&bad, "FtPause", v, "floating bodies held at the start", "0");
+            break;
+        }
 
     c->rho0 = need(s, "rhop0", &bad);
     c->gamma = need(s, "gamma", &bad);
@@ -316,6 +327,11 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
             vres_error("SlipMode=%g: must be 1 (the wall's own velocity), 2 (no-slip) or 3 (free slip)", v), bad = 1;
     }
     for (size_t k = 0; k < set->n; k++) count_normals(s, c, &set->dom[k]);
+    size_t nfloating = 0;
+    for (size_t k = 0; k < set->n; k++) nfloating += set->dom[k].nfloating;
+    if (c->mdbc && nfloating)
+        vres_error("Boundary=2 (mDBC) with floating bodies: not implemented yet; vres-run runs floating bodies with "
+                   "DBC walls (Boundary=1)"), bad = 1;
     read_options(P, c, &bad);
     if (s->ndomains > 1 && c->verlet)
         vres_error("StepAlgorithm=1 (Verlet) with %zu domains: the coupling of variable resolution runs the "
@@ -358,9 +374,10 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
  * gpu names the CUDA backend, NULL for the CPU. */
 char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu)
 {
-    size_t nwall = 0, nnormal = 0, nmoving = 0;
+    size_t nwall = 0, nnormal = 0, nmoving = 0, nfloating = 0;
     for (size_t k = 0; k < set->n; k++)
-        nwall += set->dom[k].nwall, nnormal += set->dom[k].nnormal, nmoving += set->dom[k].nmoving;
+        nwall += set->dom[k].nwall, nnormal += set->dom[k].nnormal, nmoving += set->dom[k].nmoving,
+            nfloating += set->dom[k].nfloating;
     static const char *const ddt_name[] = {"", " ddt-molteni", " ddt-fourtakas"};
     char ddt[64] = "";
     if (c->ddt) snprintf(ddt, sizeof ddt, "%s(delta=%g)", ddt_name[c->ddt], c->ddt_delta);
@@ -374,6 +391,8 @@ char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu)
     else snprintf(visc, sizeof visc, "artificial-viscosity(alpha=%g)", c->visco);
     char moving[64] = "";
     if (nmoving) snprintf(moving, sizeof moving, " moving-walls(%zu particles)", nmoving);
+    char floating[64] = "";
+    if (nfloating) snprintf(floating, sizeof floating, " floating-bodies(%zu particles)", nfloating);
     char shift[96] = "";
     if (c->shift)
         snprintf(shift, sizeof shift, " shifting(%s, coef=%g, tfs=%g)",
@@ -391,6 +410,7 @@ char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu)
     if (c->nzones > 0) snprintf(zones, sizeof zones, " inout(%d zone%s)", c->nzones, c->nzones == 1 ? "" : "s");
     char minf[48] = "";
     if (c->min_fluid > 0) snprintf(minf, sizeof minf, " minfluidstop(%g)", c->min_fluid);
-    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s%s %s%s %s%s", c->dim, c->gamma, visc,
-                          walls, moving, ddt, shift, per, zones, step, minf, dev, c->general ? " general-loop" : "");
+    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s%s%s %s%s %s%s", c->dim, c->gamma, visc,
+                          walls, moving, floating, ddt, shift, per, zones, step, minf, dev,
+                          c->general ? " general-loop" : "");
 }

@@ -8,6 +8,7 @@
 
 #include "../kernels/state.h"
 #include "../kernels/eos.h"
+#include "../kernels/floating.h"
 #include "../kernels/mdbc.h"
 #include "../kernels/motion.h"
 #include "../kernels/sph.h"
@@ -22,7 +23,7 @@
 
 /* The CPU backend's state: the domain's arrays are the store's; these are the rest. */
 typedef struct cpu_ctx {
-    vres_wall_body *body; /* [nbodies] which bodies move, by mkbound (for the moving walls); NULL without them */
+    vres_wall_body *body; /* [nbodies] which bodies move or float, by mkbound; NULL without them */
     size_t nbodies;       /* the store's bodies (entries of body, and of move_walls' mv) */
     vres_domain *d;       /* the domain stepped, in cell order after each sort */
     run_cfg c;            /* the run configuration */
@@ -34,7 +35,7 @@ typedef struct cpu_ctx {
     double *ace;          /* [3n] accelerations (m/s^2) */
     double *ar;           /* [n] density rates (kg/m^3/s) */
     double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
-    double *xref;         /* [3n] moving walls' reference positions (m); NULL without them */
+    double *xref;         /* [3n] moving and floating walls' reference positions (m); NULL without them */
     float *mvel;          /* [3n] walls' own (motion) velocity, zero for fixed walls (m/s): mDBC no-slip and free
                              slip set the wall particles' vel to what the fluid must see; NULL for other scenes */
     float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
@@ -121,13 +122,14 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
         vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, d->rho, d->press, x->inv_rho, d->mass_p, d->type};
         if (c->general)
             vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
-                                   c->ddt, x->dc.nwall > 0, c->visco_kind, shift);
+                                   c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, shift);
         else
             pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace,
                                                                 x->ar, x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
-                             x->ar, x->visc, x->shiftv, c->ddt, x->dc.nwall > 0, c->visco_kind, shift);
+                             x->ar, x->visc, x->shiftv, c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind,
+                             shift);
     else if (shift)
         x->interact_shift(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
                           x->ar, x->visc, x->shiftv);
@@ -194,6 +196,20 @@ static void cpu_move_walls(vres_backend *b, const vres_motion_state *mv)
     if (!x->xref) return;
     vres_domain *d = x->d;
     vres_move_wall_cpu(d->n, d->type, d->mk, x->xref, d->pos, d->vel, x->mvel, mv, x->body, x->nbodies);
+}
+
+/* The floating bodies' force and torque sums, in slot order. */
+static void cpu_body_forces(vres_backend *b, const double *c, double *ft)
+{
+    cpu_ctx *x = ctx_of(b);
+    const vres_domain *d = x->d;
+    memset(ft, 0, 6 * x->nbodies * sizeof *ft);
+    for (size_t i = 0; i < d->n; i++) {
+        if (!vres_type_is_floating(d->type[i])) continue;
+        size_t k = 0;
+        while (k < x->nbodies && !(x->body[k].floating && x->body[k].mkbound == d->mk[i])) k++;
+        if (k < x->nbodies) vres_float_share(i, d->pos, d->mass_p, x->ace, &c[3 * k], &ft[6 * k]);
+    }
 }
 
 /* The moving walls' current positions become their reference. */
@@ -393,7 +409,7 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
     /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
-    if (dc->nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    if (dc->nmoving || dc->nfloating) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
     if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
     for (int k = 0; k < x->nwork; k++) {
         *x->work[k].p = vres_xmalloc(x->cap * x->work[k].elem + 1);
@@ -496,7 +512,7 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
         return -1;
     }
     cpu_work_setup(x, c, dc);
-    if (dc->nmoving) {
+    if (dc->nmoving || dc->nfloating) {
         x->nbodies = s->nbodies;
         x->body = vres_wall_bodies(s);
     }
@@ -515,6 +531,7 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     b->verlet = cpu_verlet;
     b->move_walls = cpu_move_walls;
     b->anchor_walls = cpu_anchor_walls;
+    b->body_forces = cpu_body_forces;
     b->wrap = cpu_wrap;
     b->mdbc = cpu_mdbc;
     b->check = cpu_check;

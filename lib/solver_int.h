@@ -70,6 +70,7 @@ typedef struct run_dom {
     size_t nbuffer;       /* buffer particles at the start (their state comes from the coupling) */
     size_t nwall;         /* wall particles (DBC or mDBC), fixed and moving: 0 runs the loops without walls */
     size_t nmoving;       /* of those, the walls with a prescribed motion */
+    size_t nfloating;     /* of those, the particles of floating bodies (0: no floating-body terms) */
     size_t nnormal;       /* wall particles with a normal (those mDBC corrects; 0: no mDBC pass) */
 } run_dom;
 
@@ -119,6 +120,12 @@ typedef struct vres_backend {
      * (k the body's index in the store, from the start positions x_ref the backend keeps),
      * velocity v + w x (x - p). Does nothing without moving walls. */
     void (*move_walls)(struct vres_backend *b, const vres_motion_state *mv);
+    /* For each floating body k of the store (its particles by their mk), the sums over its
+     * particles of the last forces into ft[6k..6k+5] (zeroed first; other bodies' stay zero):
+     * force sum m_i a_i (N), then torque sum (x_i - c_k) x m_i a_i (N m) about c[3k..3k+2] (m);
+     * kernels/floating.h. Summed in slot order, so that a run and its restart agree to the bit.
+     * NULL in a backend that does not run floating bodies (the run then refuses them). */
+    void (*body_forces)(struct vres_backend *b, const double *c, double *ft);
     /* Keep the moving walls' current positions as their reference: move_walls' transforms then
      * count from now (the time loop anchors them at each snapshot, so that a restart from one
      * places them bit for bit as the uninterrupted run). Does nothing without moving walls. */

@@ -657,6 +657,11 @@ static void write_bodies(wctx *w, hid_t f, const vres_store *s)
         put_attr(w, bg, "inertia", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 9, 3, b->inertia);
         put_dv(w, bg, "vel", 3, b->vel);
         put_dv(w, bg, "omega", 3, b->omega);
+        if (b->kind == VRES_FLOATING) {
+            put_dv(w, bg, "quat", 4, b->quat);
+            put_dv(w, bg, "force", 3, b->force);
+            put_dv(w, bg, "torque", 3, b->torque);
+        }
         put_iv(w, bg, "transdof", 3, b->transdof);
         put_iv(w, bg, "rotdof", 3, b->rotdof);
         put_d(w, bg, "mv_start", b->mv_start);
@@ -1480,6 +1485,24 @@ static void read_motion(rctx *r, hid_t bg, vres_body *b)
     H5Dclose(d);
 }
 
+/* A floating body's state beyond its centre and velocities (attributes quat, force, torque),
+ * which stores written before they existed lack: then the placement at t = 0 (identity) and no
+ * force yet. The orientation must be a unit quaternion. */
+static void get_body_motion(rctx *r, hid_t bg, vres_body *b)
+{
+    b->quat[0] = 1, b->quat[1] = b->quat[2] = b->quat[3] = 0;
+    if (r->bad || H5Aexists(bg, "quat") <= 0) return;
+    get_dv(r, bg, "quat", 4, b->quat);
+    get_dv(r, bg, "force", 3, b->force);
+    get_dv(r, bg, "torque", 3, b->torque);
+    double n2 = b->quat[0] * b->quat[0] + b->quat[1] * b->quat[1] + b->quat[2] * b->quat[2] + b->quat[3] * b->quat[3];
+    if (!r->bad && !(fabs(n2 - 1) < 1e-9)) {
+        char p[256];
+        obj_path(bg, p, sizeof p);
+        rerr(r, "%s: attribute 'quat' is not a unit quaternion (norm^2 %g)", p, n2);
+    }
+}
+
 /* /Bodies and its B<i> groups. */
 static void read_bodies(rctx *r, hid_t f, vres_store *s)
 {
@@ -1497,6 +1520,7 @@ static void read_bodies(rctx *r, hid_t f, vres_store *s)
         get_dv(r, bg, "inertia", 9, b->inertia);
         get_dv(r, bg, "vel", 3, b->vel);
         get_dv(r, bg, "omega", 3, b->omega);
+        get_body_motion(r, bg, b);
         get_iv(r, bg, "transdof", 3, b->transdof);
         get_iv(r, bg, "rotdof", 3, b->rotdof);
         b->mv_start = get_d(r, bg, "mv_start");

@@ -127,10 +127,15 @@ typedef struct vres_body {
     int kind;              /* VRES_MOVING or VRES_FLOATING */
     double mass;           /* kg (floating; 0 for moving) */
     double rhopbody;       /* body density (kg/m^3) when given, else 0 */
-    double center[3];      /* centre of mass (m) */
-    double inertia[9];     /* inertia tensor about the centre (kg m^2), row-major */
-    double vel[3];         /* linear velocity (m/s) */
-    double omega[3];       /* angular velocity (rad/s) */
+    double center[3];      /* centre of mass (m); a floating body's where it is now (in a run's snapshots) */
+    double inertia[9];     /* inertia tensor about the centre (kg m^2), row-major, in the body's placement at
+                              t = 0 (orientation quat = identity): at time t it is R(quat) inertia R(quat)^T */
+    double vel[3];         /* linear velocity (m/s) of the centre, now */
+    double omega[3];       /* angular velocity (rad/s), now */
+    double quat[4];        /* floating: orientation (w, x, y, z), the unit quaternion of the rotation since t = 0
+                              ((1, 0, 0, 0) at the start) */
+    double force[3];       /* floating: the last force of the fluid and walls on it (N, gravity left out) */
+    double torque[3];      /* floating: their last torque about its centre (N m) */
     int transdof[3];       /* 1 where translation along x,y,z is free */
     int rotdof[3];         /* 1 where rotation about x,y,z is free */
     double mv_start;       /* s: time the motion begins */

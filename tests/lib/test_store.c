@@ -94,6 +94,9 @@ static vres_store *sample(void)
     s->body[0].center[2] = 0.3;
     s->body[0].vel[0] = 1;
     s->body[0].omega[1] = 2;
+    s->body[0].quat[0] = 0.6, s->body[0].quat[2] = 0.8; /* turned about y by 2 atan(4/3) */
+    s->body[0].force[2] = -784.5;
+    s->body[0].torque[1] = 3.25;
     s->body[0].transdof[0] = s->body[0].transdof[2] = 1;
     s->body[0].rotdof[1] = 1;
     s->body[0].mv_finish = -1;
@@ -179,6 +182,11 @@ static void same(const vres_store *a, const vres_store *b, int header_only)
         ck_assert(memcmp(p->inertia, q->inertia, sizeof p->inertia) == 0);
         ck_assert(memcmp(p->vel, q->vel, sizeof p->vel) == 0);
         ck_assert(memcmp(p->omega, q->omega, sizeof p->omega) == 0);
+        if (p->kind == VRES_FLOATING) { /* a floating body's motion; moving bodies have none */
+            ck_assert(memcmp(p->quat, q->quat, sizeof p->quat) == 0);
+            ck_assert(memcmp(p->force, q->force, sizeof p->force) == 0);
+            ck_assert(memcmp(p->torque, q->torque, sizeof p->torque) == 0);
+        }
         ck_assert(memcmp(p->transdof, q->transdof, sizeof p->transdof) == 0);
         ck_assert(memcmp(p->rotdof, q->rotdof, sizeof p->rotdof) == 0);
         ck_assert(p->mv_start == q->mv_start && p->mv_finish == q->mv_finish);
