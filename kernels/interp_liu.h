@@ -62,13 +62,18 @@
  * system has 6 (2D) / 10 (3D) unknowns and the value is exact for every quadratic field. The
  * first dim + 1 rows and columns are the first-order system, so one pass gives both; where
  * kappa2 (the same scaled measure of the larger system) exceeds cond2_max (VRES_LIU_COND2_MAX =
- * 1000) the first-order value is taken, as above, not Shepard's. Measured kappa2 (test_interp.c,
+ * 1000 by default; vres-run's --vres-cond2) the first-order value is taken, as above, not
+ * Shepard's. Measured kappa2 (test_interp.c,
  * pipelines/reports/interp_compare.txt): 2.7..3.0 in the bulk (4..8 jittered, masses +-50%),
  * 134..180 on the top row of a flat surface, 500..870 half a spacing above it (up to 2200
  * jittered: 7 of 20 points fall back), singular one spacing above (two rows in the support) and
  * at a tank's corner on both wall faces 2150 (falls back). What it removes is the kernel's own
  * smoothing of curvature, 0.84 f'' h^2 (2D) / 1.07 (3D) at every bulk point under first order:
- * the bias of a buffer's velocity in a sheared flow (cases/channel_mdbc_vres2d).
+ * the bias of a buffer's velocity in a sheared flow (cases/channel_mdbc_vres2d). A limit of 50
+ * keeps it only where the donor's fluid surrounds the point (not on a surface's top row, at a
+ * wall face or at the donor's own buffer edge, 134 and more there): a long rest where a
+ * refinement box meets a free surface needs that (cases/hydrostatic_vres2d/README.md), at a
+ * cost in sheared flows (vres-run(1)).
  *
  * The mass-flux gate's quantities come from the same pass: the kernel-support divergence
  *   D = sum_b V_b d_b . grad_a W_b = -sum_b V_b F(r_b) r_b^2   (the SPH divergence of x, = dim

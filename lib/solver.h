@@ -30,6 +30,8 @@ typedef struct vres_run_opts {
     const char *restart_from; /* the snapshot a restart continues (its path, named in the command that
                                  continues the run after a failed write); NULL for a new run */
     int profile;            /* --profile: print the time per phase of the step, write RUNDIR/profile.tsv */
+    double vres_cond2;      /* --vres-cond2: largest kappa2 of the second-order interpolation (>= 1); 0: the
+                               restarted run's, else VRES_LIU_COND2_MAX */
 } vres_run_opts;
 
 /* Check that the store is one this solver runs (refusing anything it would have to ignore)

@@ -63,6 +63,7 @@ struct vres_couple {
     vres_couple_parts part; /* that time by part (s), the start's excluded as from wall */
     int flux;             /* how segments measure mass: VRES_FLUX_* (kernels/couple.h), --vres-flux */
     int order;            /* order of the buffer interpolation: 1, 2 or VRES_COUPLE_ORDER_AUTO (2 from coarser donors) */
+    double cond2;         /* largest kappa2 of the second-order interpolation (kernels/interp_liu.h) */
     const vres_body **track; /* [ndom] the body each domain's box follows (the store's), NULL entries for boxes that
                                 stand still; NULL when no box moves */
     vres_inout *io;       /* the inlet/outlet zones (solver_inout.c), NULL when none */
@@ -174,7 +175,7 @@ int vres_couple_flux_parse(const char *name)
     return -1;
 }
 
-vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order,
+vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order, double cond2,
                               const char *flux)
 {
     if (s->ndomains < 2 && vres_inout_count(s) <= 0) return NULL;
@@ -209,6 +210,9 @@ vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restart
     C->order = order ? (!strcmp(order, "1") ? 1 : !strcmp(order, "2") ? 2 : VRES_COUPLE_ORDER_AUTO)
                      : restarted ? (int)vres_params_get(&s->params, "run_vres_order", VRES_COUPLE_ORDER_AUTO)
                                  : VRES_COUPLE_ORDER_AUTO;
+    C->cond2 = cond2 > 0 ? cond2
+               : restarted ? vres_params_get(&s->params, "run_vres_cond2", VRES_LIU_COND2_MAX)
+                           : VRES_LIU_COND2_MAX;
     for (int k = 0; k < C->ndom; k++) {
         couple_dom *cd = &C->d[k];
         const vres_domain *d = &s->dom[k];
@@ -257,6 +261,7 @@ static void refresh_donors(vres_couple *C, run_set *set)
         set->b[k].donor_view(&set->b[k], &C->donors[k]);
         C->donors[k].o = vres_liu_defaults(vres_wendland_make(C->dim, set->dom[k].h), C->rho0);
         C->donors[k].o.order = C->order;
+        C->donors[k].o.cond2_max = C->cond2;
         C->donors[k].dp = set->dom[k].dp;
     }
 }
@@ -567,6 +572,7 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
     vres_params_set1(&s->params, "run_mass0", C->mass0, "kg", "run");
     vres_params_set1(&s->params, "run_next_id", (double)C->next_id, "", "run");
     vres_params_set1(&s->params, "run_vres_order", C->order, "", "run");
+    vres_params_set1(&s->params, "run_vres_cond2", C->cond2, "", "run");
     vres_params_set1(&s->params, "run_vres_flux", C->flux, "", "run");
     s->next_id = C->next_id;
 }

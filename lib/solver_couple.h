@@ -37,10 +37,12 @@ extern const char vres_couple_ledger_header[];
 /* The coupling of store s's domains (its regions, interfaces and, on a restart, the ledger,
  * the start's total mass and the interpolation order), or NULL for a store with one domain.
  * order: "1", "2", "auto" (vres-run's --vres-order) or NULL (the restarted run's, else auto);
+ * cond2: the largest kappa2 of the second order (--vres-cond2), or 0 (the restarted run's, else
+ * VRES_LIU_COND2_MAX);
  * flux: a name vres_couple_flux_parse knows (--vres-flux) or NULL (VRES_FLUX in the environment,
  * else the restarted run's, else VRES_FLUX_DEFAULT). NULL also after an error, said on stderr. */
 vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order,
-                              const char *flux);
+                              double cond2, const char *flux);
 /* The VRES_FLUX_* code (kernels/couple.h) of a segment-flux name, "capped", "interp", "balanced"
  * or "crossing" (vres-run --vres-flux); -1 for any other. */
 int vres_couple_flux_parse(const char *name);

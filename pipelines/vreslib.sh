@@ -207,7 +207,9 @@ check_args() {
 # run_case XML [GENCASE OPTION]...: generate the case at $DP (the case's own dp when empty),
 # with the --set options of $SETS,
 # and run it into $RUNDIR with $THREADS threads (OpenMP's choice when empty) to $TMAX (the
-# case's TimeMax when empty). Sets RUN_STATUS to vres-run's exit status; keeps its stderr in
+# case's TimeMax when empty), with the extra vres-run options of VRES_RUN_ARGS in the environment
+# (split at spaces; e.g. VRES_RUN_ARGS='--vres-order 1', for a sweep of the coupling's options).
+# Sets RUN_STATUS to vres-run's exit status; keeps its stderr in
 # $WORK/run.log (shown when the run fails) and, when the run directory was made, its stderr
 # and exit status there too as vres-run.log and vres-run.status, so that a later check of the
 # directory alone (a stability check reading the diagnosis) finds them.
@@ -222,7 +224,9 @@ run_case() {
         mv "$WORK/parts.h5" "$WORK/case.h5"
     fi
     note "running $(basename "$xml") at dp ${DP:-as in the case} into $RUNDIR"
-    "$VRES_BIN/vres-run" -q ${THREADS:+--threads "$THREADS"} ${TMAX:+--tmax "$TMAX"} \
+    local extra=()
+    read -r -a extra <<<"${VRES_RUN_ARGS:-}"
+    "$VRES_BIN/vres-run" -q ${THREADS:+--threads "$THREADS"} ${TMAX:+--tmax "$TMAX"} "${extra[@]}" \
         "$WORK/case.h5" -o "$RUNDIR" 2>"$WORK/run.log"
     RUN_STATUS=$?
     rm -f "$WORK/case.h5"

@@ -126,6 +126,22 @@ expect_err 2 "--vres-order 3: must be 1, 2 or auto" "--vres-order 3 refused (exi
     "$RUN" --vres-order 3 "$T/parts.h5" -o "$T/o3"
 check "nothing written for it" [ ! -e "$T/o3" ]
 
+# ---- the second order's condition limit (--vres-cond2): kept in the snapshots, and a restart
+# without the option continues with the run's limit, bit for bit; 50 (below the top row of a
+# surface's 134..180, kernels/interp_liu.h) changes the flow against the default's 1000
+expect 0 "coupled run with --vres-cond2 50 to 0.04 s" "$RUN" -q --vres-cond2 50 --tmax 0.04 --tout 0.02 "$T/parts.h5" -o "$T/k50"
+v=$(h5dump -a /Parameters/run_vres_cond2 "$T/k50/snap_00001.h5" | sed -n 's/^ *(0): //p')
+check "snap_00001.h5 records run_vres_cond2 50 ($v)" [ "$v" = 50 ]
+v=$(h5dump -a /Parameters/run_vres_cond2 "$T/a/snap_00001.h5" | sed -n 's/^ *(0): //p')
+check "the default run records run_vres_cond2 1000 ($v)" [ "$v" = 1000 ]
+expect 0 "restart from its snap_00001.h5 without --vres-cond2" "$RUN" -q --restart "$T/k50/snap_00001.h5" -o "$T/k50r"
+same_snaps "$T/k50" "$T/k50r" 2:2
+check "the run with --vres-cond2 50 differs from the default run at 0.04 s" \
+    sh -c "! h5diff -q '$T/a/snap_00002.h5' '$T/k50/snap_00002.h5' /Domains/D1/Velocity /Domains/D1/Velocity >/dev/null"
+expect_err 2 "--vres-cond2 0.5: must be at least 1" "--vres-cond2 0.5 refused (exit 2) with its message" \
+    "$RUN" --vres-cond2 0.5 "$T/parts.h5" -o "$T/k05"
+check "nothing written for it" [ ! -e "$T/k05" ]
+
 # ---- the segments' flux (--vres-flux): kept in the snapshots (run_vres_flux, kernels/couple.h's
 # code: balanced 0), and a restart without the option (nor VRES_FLUX) continues with the run's
 # flux, bit for bit; the flux changes the flow once the tilted water creates particles
