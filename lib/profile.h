@@ -1,6 +1,6 @@
 /* profile.h - where a run's time goes: wall-clock seconds accumulated per phase of the step
  * (sort, forces, integration, walls, mDBC, checks, coupling, output), printed by
- * `vres-run --profile` and written to RUNDIR/profile.tsv, so that every change to the step can
+ * `vres-run --profile` and written to RUNDIR/phases.tsv, so that every change to the step can
  * be judged by the share it moves (issue 9). The clocks cost two clock reads per phase and
  * step (tens of nanoseconds against steps of milliseconds), so they always run. */
 #ifndef VRES_PROFILE_H

@@ -423,7 +423,7 @@ static int open_ledger(run_files *f, const char *dir)
     return f->ledger ? 0 : -1;
 }
 
-/* Print the time loop's phase times p (--profile) and write them to RUNDIR/profile.tsv
+/* Print the time loop's phase times p (--profile) and write them to RUNDIR/phases.tsv
  * (atomically). 0, or -1 after printing why. */
 static int write_profile(const vres_prof *p, const char *dir)
 {
@@ -431,7 +431,7 @@ static int write_profile(const vres_prof *p, const char *dir)
     for (int ph = 0; ph < VRES_PROF_N; ph++)
         vres_info("  %-10s %9.4g s %5.1f%% %10.4g us", vres_prof_name(ph), p->s[ph],
                   p->loop_s > 0 ? 100 * p->s[ph] / p->loop_s : 0, p->steps > 0 ? 1e6 * p->s[ph] / p->steps : 0);
-    char *path = vres_xasprintf("%s/profile.tsv", dir);
+    char *path = vres_xasprintf("%s/phases.tsv", dir);
     vres_outfile of;
     int rc = vres_out_begin(&of, path);
     free(path);

@@ -29,7 +29,7 @@ typedef struct vres_run_opts {
                                NULL: VRES_FLUX, else the restarted run's, else the default */
     const char *restart_from; /* the snapshot a restart continues (its path, named in the command that
                                  continues the run after a failed write); NULL for a new run */
-    int profile;            /* --profile: print the time per phase of the step, write RUNDIR/profile.tsv */
+    int profile;            /* --profile: print the time per phase of the step, write RUNDIR/phases.tsv */
     double vres_cond2;      /* --vres-cond2: largest kappa2 of the second-order interpolation (>= 1); 0: the
                                restarted run's, else VRES_LIU_COND2_MAX */
 } vres_run_opts;

@@ -30,7 +30,7 @@ static const vres_opt options[] = {
     {"vres-order", 0, VRES_ARG_STR, 0},       /* order of the coupling's buffer interpolation: 1, 2 or auto */
     {"vres-cond2", 0, VRES_ARG_DOUBLE, 0},    /* largest condition number kappa2 of the second-order interpolation */
     {"vres-flux", 0, VRES_ARG_STR, 0},        /* how interface segments measure mass: capped, interp, balanced, crossing */
-    {"profile", 0, VRES_ARG_NONE, 0},         /* print the time per phase of the step, write RUNDIR/profile.tsv */
+    {"profile", 0, VRES_ARG_NONE, 0},         /* print the time per phase of the step, write RUNDIR/phases.tsv */
     {NULL, 0, VRES_ARG_NONE, 0},
 };
 

@@ -51,18 +51,18 @@ done
 expect 0 "VRES_LOOP=fancy runs" env VRES_LOOP=fancy "$RUN" --tmax 0.002 "$T/tank.h5" -o "$T/fancy"
 check "VRES_LOOP=fancy: warned" grep -q 'VRES_LOOP=fancy not known' "$ERR"
 
-# --profile: the time per phase of the step, printed and written to profile.tsv; the phases and
+# --profile: the time per phase of the step, printed and written to phases.tsv; the phases and
 # the rest add up to the loop's time (each row rounded to 4 digits: within 0.5%), the forces
 # took a share (they are most of any run), and the run's state is the same as without it (the
 # clocks always run; the option only reports them)
 expect 0 "--profile runs" "$RUN" --profile --tmax 0.01 "$T/tank.h5" -o "$T/prof"
 check "--profile: the table printed" grep -q -E 'vres-run:   forces +[0-9.e+-]+ s +[0-9.]+%' "$ERR"
-check "--profile: profile.tsv has the eight phases, other and total" \
+check "--profile: phases.tsv has the eight phases, other and total" \
     awk -F'\t' '$1 ~ /^(sort|forces|integrate|walls|mdbc|check|coupling|output|other|total)$/ && NF == 4 {n++}
-        END {exit n != 10}' "$T/prof/profile.tsv"
+        END {exit n != 10}' "$T/prof/phases.tsv"
 check "--profile: the rows add up to the total" awk -F'\t' '!/^#/ && $1 != "total" {s += $2} $1 == "total" {t = $2}
-    END {exit !(t > 0 && s > 0.995 * t && s < 1.005 * t)}' "$T/prof/profile.tsv"
-check "--profile: the forces took time" awk -F'\t' '$1 == "forces" {exit !($2 > 0 && $3 > 1)}' "$T/prof/profile.tsv"
-check "--profile: no other file than without it" bash -c "diff <(ls '$T/quiet') <(ls '$T/prof' | grep -v '^profile.tsv$')"
+    END {exit !(t > 0 && s > 0.995 * t && s < 1.005 * t)}' "$T/prof/phases.tsv"
+check "--profile: the forces took time" awk -F'\t' '$1 == "forces" {exit !($2 > 0 && $3 > 1)}' "$T/prof/phases.tsv"
+check "--profile: no other file than without it" bash -c "diff <(ls '$T/quiet') <(ls '$T/prof' | grep -v '^phases.tsv$')"
 check "--profile: same state as without it" h5diff -q "$T/quiet/snap_00001.h5" "$T/prof/snap_00001.h5" /Domains /Domains
-check "without --profile: no profile.tsv" [ ! -e "$T/quiet/profile.tsv" ]
+check "without --profile: no phases.tsv" [ ! -e "$T/quiet/phases.tsv" ]
