@@ -24,6 +24,20 @@ START_TEST(tait_inverse_round_trip)
 }
 END_TEST
 
+/* gamma 7 is computed by products: within 1e-14 B max(1, (rho/rho0)^7) (a few ulp) of pow's value over
+   densities from 0.5 to 1.5 rho0, and gamma 7.0001 (pow) next to it continuous to 1e-4 */
+START_TEST(eos_gamma7_products)
+{
+    const double B = 40.0 * 40.0 * 1000.0 / 7.0;
+    for (double rho = 500.0; rho <= 1500.0; rho += 0.37) {
+        const double ref = B * (pow(rho / 1000.0, 7.0) - 1.0);
+        ck_assert_msg(fabs(vres_tait_pressure(rho, 1000.0, B, 7.0) - ref) <= 1e-14 * B * fmax(1.0, pow(rho / 1000.0, 7.0)),
+                      "rho %g: %.17g vs pow %.17g", rho, vres_tait_pressure(rho, 1000.0, B, 7.0), ref);
+        ck_assert(fabs(vres_tait_pressure(rho, 1000.0, B, 7.0001) - ref) < 1e-4 * B * pow(rho / 1000.0, 7.0) + 1e-3);
+    }
+}
+END_TEST
+
 START_TEST(eos_loop_matches_formula)
 {
     enum { N = 1000 };
@@ -56,6 +70,7 @@ int main(void)
     Suite *s = suite_create("device");
     TCase *tc = tcase_create("device");
     tcase_add_test(tc, tait_inverse_round_trip);
+    tcase_add_test(tc, eos_gamma7_products);
     tcase_add_test(tc, eos_loop_matches_formula);
     tcase_add_test(tc, device_choice_without_gpu);
     suite_add_tcase(s, tc);
