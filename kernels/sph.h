@@ -460,6 +460,20 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
                     const double *ar, double *pos, float *vel, float *rho, double dt, double rhop0),
                    (type, pos0, vel0, rho0, ace, ar, pos, vel, rho, dt, rhop0))
 
+/* VRES_SPH_NINE(V, prefix, args...): V(name, ddt, walls, args...) for the nine combinations of
+ * walls (none, DBC, floating) and density diffusion (none, Molteni, Fourtakas), named
+ * prefix##plain, prefix##molteni, prefix##fourtakas, prefix##dbc..., prefix##flt... */
+#define VRES_SPH_NINE(V, prefix, ...)                          \
+    V(prefix##plain, VRES_DDT_NONE, 0, __VA_ARGS__)            \
+    V(prefix##molteni, VRES_DDT_MOLTENI, 0, __VA_ARGS__)       \
+    V(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, __VA_ARGS__)   \
+    V(prefix##dbc, VRES_DDT_NONE, 1, __VA_ARGS__)              \
+    V(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, __VA_ARGS__)   \
+    V(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, __VA_ARGS__) \
+    V(prefix##flt, VRES_DDT_NONE, 2, __VA_ARGS__)              \
+    V(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, __VA_ARGS__)   \
+    V(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, __VA_ARGS__)
+
 /* The interaction variants: VRES_SPH_VARIANT(name, ddt, walls, visc, kernel) defines name_one with
  * the options fixed (the compiler drops the unused branches) and its loops name_cpu / name_cuda. */
 #define VRES_SPH_VARIANT(name, ddt, walls, viscosity, kernel)                                                    \
@@ -479,16 +493,8 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
 
 /* The nine wall and diffusion variants for one viscosity kind and kernel: prefix##plain, prefix##molteni,
  * prefix##fourtakas (no walls) and prefix##dbc, prefix##dbc_molteni, prefix##dbc_fourtakas. */
-#define VRES_SPH_VARIANTS(prefix, viscosity, kernel)                                       \
-    VRES_SPH_VARIANT(prefix##plain, VRES_DDT_NONE, 0, viscosity, kernel)                   \
-    VRES_SPH_VARIANT(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity, kernel)              \
-    VRES_SPH_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity, kernel)          \
-    VRES_SPH_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity, kernel)                     \
-    VRES_SPH_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity, kernel)          \
-    VRES_SPH_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity, kernel)      \
-    VRES_SPH_VARIANT(prefix##flt, VRES_DDT_NONE, 2, viscosity, kernel)                     \
-    VRES_SPH_VARIANT(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity, kernel)          \
-    VRES_SPH_VARIANT(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity, kernel)
+#define VRES_SPH_VARIANTS(prefix, viscosity, kernel) \
+    VRES_SPH_NINE(VRES_SPH_VARIANT, prefix, viscosity, kernel)
 
 /* The same with shifting sums: VRES_SPH_SHIFT_VARIANT(name, ddt, walls, visc, kernel) defines
  * name_cpu / name_cuda taking shiftv [4n] after visc. */
@@ -508,16 +514,8 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
                        (g, pos, vel, rho, press, mass, type, C, ace, ar, visc, shiftv))
 
 /* The nine shifting variants for one viscosity kind and kernel, named like VRES_SPH_VARIANTS'. */
-#define VRES_SPH_SHIFT_VARIANTS(prefix, viscosity, kernel)                                       \
-    VRES_SPH_SHIFT_VARIANT(prefix##plain, VRES_DDT_NONE, 0, viscosity, kernel)                   \
-    VRES_SPH_SHIFT_VARIANT(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity, kernel)              \
-    VRES_SPH_SHIFT_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity, kernel)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity, kernel)                     \
-    VRES_SPH_SHIFT_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity, kernel)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity, kernel)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##flt, VRES_DDT_NONE, 2, viscosity, kernel)                     \
-    VRES_SPH_SHIFT_VARIANT(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity, kernel)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity, kernel)
+#define VRES_SPH_SHIFT_VARIANTS(prefix, viscosity, kernel) \
+    VRES_SPH_NINE(VRES_SPH_SHIFT_VARIANT, prefix, viscosity, kernel)
 
 VRES_SPH_VARIANTS(vres_sph_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND)      /* vres_sph_plain ... */
 VRES_SPH_VARIANTS(vres_sph_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_WENDLAND) /* vres_sph_laminar_plain ... */
@@ -832,16 +830,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vr
                        (g, P, C, ace, ar, visc, shiftv))
 
 /* The nine 2D variants of one viscosity kind, kernel and shifting choice (walls x density diffusion). */
-#define VRES_SPH_VARIANTS2D(prefix, viscosity, kernel, shift)                                       \
-    VRES_SPH_VARIANT2D(prefix##plain, VRES_DDT_NONE, 0, viscosity, kernel, shift)                   \
-    VRES_SPH_VARIANT2D(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity, kernel, shift)              \
-    VRES_SPH_VARIANT2D(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity, kernel, shift)          \
-    VRES_SPH_VARIANT2D(prefix##dbc, VRES_DDT_NONE, 1, viscosity, kernel, shift)                     \
-    VRES_SPH_VARIANT2D(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity, kernel, shift)          \
-    VRES_SPH_VARIANT2D(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity, kernel, shift)          \
-    VRES_SPH_VARIANT2D(prefix##flt, VRES_DDT_NONE, 2, viscosity, kernel, shift)                     \
-    VRES_SPH_VARIANT2D(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity, kernel, shift)          \
-    VRES_SPH_VARIANT2D(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity, kernel, shift)
+#define VRES_SPH_VARIANTS2D(prefix, viscosity, kernel, shift) \
+    VRES_SPH_NINE(VRES_SPH_VARIANT2D, prefix, viscosity, kernel, shift)
 
 #define VRES_W VRES_KERNEL_WENDLAND
 #define VRES_C VRES_KERNEL_CUBIC
