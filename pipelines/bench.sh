@@ -30,7 +30,8 @@
 #   last stderr line ("coupling of the N domains: ..."); for reference, the same case in
 #   single resolution (vres-partition --single) at the box's dp, from its own state at
 #   WARMVRES s.
-# Table 5 (phases): where the time loop goes (vres-run --profile, RUNDIR/profile.tsv): the
+# Table 5 (phases): where the time loop goes (vres-run --profile, RUNDIR/phases.tsv, named
+#   profile.tsv by vres-run before 2026-12-02, read when there is no phases.tsv): the
 #   percent of the loop in each phase (sort, forces, integrate, walls, mdbc, check, coupling,
 #   output, other) and the microseconds per step, for the 2D dam break (dp 0.01, from t = 0)
 #   and the two-domain dam break of table 4 (from its warm state at WARMVRES s), about
@@ -292,12 +293,15 @@ if want vres; then
     done
 fi
 
-# PHASES: the phase columns of table 5, in profile.tsv's order
+# PHASES: the phase columns of table 5, in phases.tsv's order
 PHASES="sort forces integrate walls mdbc check coupling output other"
 
-# phase_row NAME PARTICLES THREADS STEPS RUNDIR: one line of table 5 from RUNDIR/profile.tsv
-# (percent of the loop per phase, by the phases' names; "-" for one the table lacks)
+# phase_row NAME PARTICLES THREADS STEPS RUNDIR: one line of table 5 from RUNDIR/phases.tsv (or
+# an older vres-run's profile.tsv): percent of the loop per phase, by the phases' names ("-" for
+# one the table lacks)
 phase_row() {
+    local tsv=$5/phases.tsv
+    [ -f "$tsv" ] || tsv=$5/profile.tsv
     awk -F'\t' -v name="$1" -v n="$2" -v th="$3" -v steps="$4" -v phases="$PHASES" '
         !/^#/ {pct[$1] = $3; us[$1] = $4}
         END {
@@ -305,7 +309,7 @@ phase_row() {
             printf "%s\t%d\t%d\t%d", name, n, th, steps
             k = split(phases, ph, " ")
             for (i = 1; i <= k; i++) printf "\t%s", (ph[i] in pct) ? pct[ph[i]] : "-"
-            printf "\t%s\n", us["total"] }' "$5/profile.tsv"
+            printf "\t%s\n", us["total"] }' "$tsv"
 }
 
 if want phases; then
