@@ -129,7 +129,8 @@ VRES_HD static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const d
                             xg[2] - (pos[3 * b + 2] + nb[c].shift[2])};
             double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
             if (r2 >= C.fourh2) continue;
-            double r = sqrt(r2), W = vres_wendland_w(C.k, r), F = vres_wendland_f(C.k, r);
+            /* the run's kernel, as DualSPHysics' mDBC (GetKernel_WabFac of the case's kernel) */
+            double r = sqrt(r2), W = vres_sph_kernel_w(&C, C.kernel, r), F = vres_sph_kernel_f(&C, C.kernel, r);
             double mb = mass[b], vol = mb / rho[b];
             double row[4], col[4];
             row[0] = W, col[0] = 1;

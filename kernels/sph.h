@@ -4,7 +4,9 @@
  *   continuity  drho_a/dt = sum_b m_b v_ab . grad_a W_ab  (+ delta-SPH density diffusion)
  *   momentum    dv_a/dt   = -sum_b m_b ((p_a + p_b)/(rho_a rho_b) + Pi_ab) grad_a W_ab + g
  *
- * with x_ab = x_a - x_b, v_ab = v_a - v_b, grad_a W_ab = F(r) x_ab (wendland.h), Monaghan's
+ * with x_ab = x_a - x_b, v_ab = v_a - v_b, grad_a W_ab = F(r) x_ab (the Wendland C2 kernel of
+ * wendland.h, or the cubic spline of cubic.h, whose pressure terms carry DualSPHysics' tensile
+ * correction: (p_a + p_b)/(rho_a rho_b) + f^4 (R_a + R_b), Monaghan 2000), Monaghan's
  * artificial viscosity Pi_ab or laminar viscosity (Lo & Shao 2002, as DualSPHysics) and walls as DBC (dynamic boundary particles: they carry density
  * from the continuity equation over their fluid neighbours, their pressure comes from the EOS,
  * and they do not move). Time integration is DualSPHysics' Symplectic predictor-corrector.
@@ -27,6 +29,7 @@
 #include <string.h>
 
 #include "cells.h"
+#include "cubic.h"
 #include "device.h"
 #include "ptype.h"
 #include "wendland.h"
@@ -49,9 +52,15 @@
 #define VRES_VISC_ARTIFICIAL 1 /* Monaghan's artificial viscosity, alpha = Visco */
 #define VRES_VISC_LAMINAR 3    /* laminar viscosity (Lo & Shao 2002), nu = Visco (m^2/s) */
 
+/* Smoothing kernels (parameter Kernel, DualSPHysics' numbers). */
+#define VRES_KERNEL_CUBIC 1    /* cubic spline with the tensile correction (cubic.h) */
+#define VRES_KERNEL_WENDLAND 2 /* Wendland C2 (wendland.h) */
+
 /* Constants of one domain's interaction, computed once per run (passed by value). */
 typedef struct vres_sph_consts {
-    vres_wendland k;    /* kernel constants (h, normalisation) */
+    vres_wendland k;    /* Wendland kernel constants (h, normalisation) */
+    vres_cubic kc;      /* cubic spline kernel constants (the same h) */
+    int kernel;         /* VRES_KERNEL_*: the kernel the interaction and mDBC use */
     double h;           /* smoothing length (m) */
     double fourh2;      /* (2h)^2: squared support radius (m^2) */
     double eta2;        /* 0.01 h^2: keeps the viscous and diffusive terms finite as r -> 0 (m^2) */
@@ -69,19 +78,35 @@ typedef struct vres_sph_consts {
                            one does, 3: walls count like fluid (used by the shifting variants only) */
 } vres_sph_consts;
 
-/* The kernel part of the constants for dimension dim and smoothing length h (m): k, h, the
- * support (2h)^2, eta2 = 0.01 h^2 and the speed of sound cs0 (m/s); every other field zero,
- * for the caller to set (the solver's run configuration, vres-forces' pair terms). */
+/* The kernel part of the constants for dimension dim and smoothing length h (m): k and kc,
+ * kernel Wendland, h, the support (2h)^2, eta2 = 0.01 h^2 and the speed of sound cs0 (m/s);
+ * every other field zero, for the caller to set (the solver's run configuration, vres-forces'
+ * pair terms). */
 static inline vres_sph_consts vres_sph_consts_make(int dim, double h, double cs0)
 {
     vres_sph_consts C;
     memset(&C, 0, sizeof C);
     C.k = vres_wendland_make(dim, h);
+    C.kc = vres_cubic_make(dim, h);
+    C.kernel = VRES_KERNEL_WENDLAND;
     C.h = h;
     C.fourh2 = 4.0 * h * h;
     C.eta2 = 0.01 * h * h;
     C.cs0 = cs0;
     return C;
+}
+
+/* F(r) = (dW/dr)/r (m^-(dim+2)) of kernel (VRES_KERNEL_*; a constant in the interaction's
+ * variants, so that the other kernel's code is compiled away) at distance r >= 0 (m). */
+VRES_HD static inline double vres_sph_kernel_f(const vres_sph_consts *C, const int kernel, double r)
+{
+    return kernel == VRES_KERNEL_CUBIC ? vres_cubic_f(C->kc, r) : vres_wendland_f(C->k, r);
+}
+
+/* W(r) (m^-dim) of kernel (VRES_KERNEL_*) at distance r >= 0 (m). */
+VRES_HD static inline double vres_sph_kernel_w(const vres_sph_consts *C, const int kernel, double r)
+{
+    return kernel == VRES_KERNEL_CUBIC ? vres_cubic_w(C->kc, r) : vres_wendland_w(C->k, r);
 }
 
 /* Pressure force of b on a, added to acc (m/s^2): -m_b (p_a + p_b)/(rho_a rho_b) F x_ab.
@@ -92,6 +117,19 @@ VRES_HD static inline void vres_sph_pair_pressure(double mb, double pa, double p
                                                   const double fr[3], double acc[3])
 {
     double prs = mb * (pa + pb) * inv_rhoa * inv_rhob;
+    acc[0] -= prs * fr[0];
+    acc[1] -= prs * fr[1];
+    acc[2] -= prs * fr[2];
+}
+
+/* The same with the cubic spline's tensile correction (DualSPHysics', cubic.h): the pair's
+ * (p_a + p_b)/(rho_a rho_b) plus tens = vres_cubic_tensile(...) (m^5/(kg s^2)), which is
+ * symmetric in a, b too. */
+VRES_HD static inline void vres_sph_pair_pressure_tensile(double mb, double pa, double pb, double inv_rhoa,
+                                                          double inv_rhob, double tens, const double fr[3],
+                                                          double acc[3])
+{
+    double prs = mb * ((pa + pb) * inv_rhoa * inv_rhob + tens);
     acc[0] -= prs * fr[0];
     acc[1] -= prs * fr[1];
     acc[2] -= prs * fr[2];
@@ -176,11 +214,11 @@ VRES_HD static inline void vres_sph_no_rates(size_t a, double *ace, double *ar, 
  * component normal to their band (vres_couple_shift_one): DualSPHysics 5.4 shifts them so
  * (BufferShiftingCpu), which keeps the band's particles spread while they are advected by the
  * interpolated velocity. Positions: x[b stride], z[b stride], and y[b stride] unless y is NULL
- * (2D); walls 1 when the domain has wall particles. */
+ * (2D); walls 1 when the domain has wall particles; kernel a VRES_KERNEL_*. */
 VRES_HD static inline void vres_sph_shift_sums(size_t a, const vres_cell_range *nb, int m, const double *x,
                                                const double *y, const double *z, size_t stride, const float *rho,
                                                const double *mass, const uint8_t *type, const vres_sph_consts *C,
-                                               const int walls, double *shiftv)
+                                               const int walls, const int kernel, double *shiftv)
 {
     const double xa = x[a * stride], ya = y ? y[a * stride] : 0.0, za = z[a * stride];
     double gc[3] = {0, 0, 0}, divr = 0;
@@ -193,7 +231,7 @@ VRES_HD static inline void vres_sph_shift_sums(size_t a, const vres_cell_range *
             if (r2 >= C->fourh2 || r2 < 1e-18 * C->fourh2) continue; /* outside the support, or a itself */
             /* the operations of vres_sph_interact's (and the 2D loop's) shifting terms, so that
                the sums are those of a fluid particle at a to the bit */
-            const double F = vres_wendland_f(C->k, sqrt(r2)), vol = mass[b] * (1.0 / (double)rho[b]);
+            const double F = vres_sph_kernel_f(C, kernel, sqrt(r2)), vol = mass[b] * (1.0 / (double)rho[b]);
             const double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
             if (walls && !vres_type_acts_fluid(type[b]) &&
                 (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(type[b]))))
@@ -226,8 +264,9 @@ VRES_HD static inline int vres_sph_walls_meet(const int walls, int ta, int tb)
  * so that a body resting on a floor is held by DBC's pressure; for a buffer particle all three zero (its state is the
  * coupling's), while it enters its neighbours' sums as fluid (vres_type_acts_fluid). Positions, velocities, densities, pressures, masses and types
  * are the domain's arrays in cell order (slot s of g is particle s). ddt is a VRES_DDT_*
- * kind, walls 1 when the domain has wall particles, visc a VRES_VISC_* kind; the variants
- * below fix all three. shift 1 (the shifting variants) also sums, for each fluid particle, the
+ * kind, walls 1 when the domain has wall particles, visc a VRES_VISC_* kind, kernel a
+ * VRES_KERNEL_* (the cubic spline adds its tensile correction to every pressure term); the
+ * variants below fix all four. shift 1 (the shifting variants) also sums, for each fluid particle, the
  * concentration gradient grad C = sum_b V_b grad_a W_ab (1/m) and the position divergence
  * div r = -sum_b V_b x_ab . grad_a W_ab (dim inside the fluid, less near a free surface) into
  * shiftv[4a..4a+3], V_b = m_b/rho_b; NaN in shiftv[4a] when a wall neighbour cancels the
@@ -236,14 +275,14 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                                              const float *rho, const float *press, const double *mass,
                                              const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
                                              double *visc, const int ddt, const int walls, const int viscosity,
-                                             const int shift, double *shiftv)
+                                             const int kernel, const int shift, double *shiftv)
 {
     if (vres_type_is_imposed(type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
         if (shift) {
             vres_cell_range bnb[27];
             const int bm = vres_cells_neighbours(g, &pos[3 * a], bnb);
-            vres_sph_shift_sums(a, bnb, bm, pos, pos + 1, pos + 2, 3, rho, mass, type, &C, walls, shiftv);
+            vres_sph_shift_sums(a, bnb, bm, pos, pos + 1, pos + 2, 3, rho, mass, type, &C, walls, kernel, shiftv);
         }
         return;
     }
@@ -252,6 +291,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
     const double xa[3] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
     const double va[3] = {vel[3 * a], vel[3 * a + 1], vel[3 * a + 2]};
     const double rhoa = rho[a], inv_rhoa = 1.0 / rhoa, pa = press[a];
+    const double ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_r(pa, inv_rhoa) : 0.0; /* a's tensile part */
     double acc[3] = {0, 0, 0}, arp = 0, vmax = 0, diff = 0, gc[3] = {0, 0, 0}, divr = 0;
     int noshift = 0;
     vres_cell_range nb[27];
@@ -265,7 +305,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                             xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
             double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
             if (r2 >= C.fourh2 || r2 < 1e-18 * C.fourh2) continue; /* outside the support, or a itself */
-            double F = vres_wendland_f(C.k, sqrt(r2));
+            double r = sqrt(r2), F = vres_sph_kernel_f(&C, kernel, r);
             double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
             double dv[3] = {va[0] - vel[3 * b], va[1] - vel[3 * b + 1], va[2] - vel[3 * b + 2]};
             double mb = mass[b], rhob = rho[b], inv_r2eta = 1.0 / (r2 + C.eta2);
@@ -276,7 +316,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                 continue;
             }
             double inv_rhob = 1.0 / rhob;
-            vres_sph_pair_pressure(mb, pa, press[b], inv_rhoa, inv_rhob, fr, acc);
+            if (kernel == VRES_KERNEL_CUBIC)
+                vres_sph_pair_pressure_tensile(mb, pa, press[b], inv_rhoa, inv_rhob,
+                                               vres_cubic_tensile(C.kc, r, ra, vres_cubic_tensile_r(press[b], inv_rhob)),
+                                               fr, acc);
+            else vres_sph_pair_pressure(mb, pa, press[b], inv_rhoa, inv_rhob, fr, acc);
             double rate = viscosity == VRES_VISC_LAMINAR
                               ? vres_sph_pair_laminar(wall_b || float_a ? C.nu_wall : C.nu, mb, rhoa, rhob, dx, dv,
                                                       inv_r2eta, fr, acc)
@@ -416,15 +460,30 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
                     const double *ar, double *pos, float *vel, float *rho, double dt, double rhop0),
                    (type, pos0, vel0, rho0, ace, ar, pos, vel, rho, dt, rhop0))
 
-/* The interaction variants: VRES_SPH_VARIANT(name, ddt, walls, visc) defines name_one with the
- * options fixed (the compiler drops the unused branches) and its loops name_cpu / name_cuda. */
-#define VRES_SPH_VARIANT(name, ddt, walls, viscosity)                                                            \
+/* VRES_SPH_NINE(V, prefix, args...): V(name, ddt, walls, args...) for the nine combinations of
+ * walls (none, DBC, floating) and density diffusion (none, Molteni, Fourtakas), named
+ * prefix##plain, prefix##molteni, prefix##fourtakas, prefix##dbc..., prefix##flt... */
+#define VRES_SPH_NINE(V, prefix, ...)                          \
+    V(prefix##plain, VRES_DDT_NONE, 0, __VA_ARGS__)            \
+    V(prefix##molteni, VRES_DDT_MOLTENI, 0, __VA_ARGS__)       \
+    V(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, __VA_ARGS__)   \
+    V(prefix##dbc, VRES_DDT_NONE, 1, __VA_ARGS__)              \
+    V(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, __VA_ARGS__)   \
+    V(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, __VA_ARGS__) \
+    V(prefix##flt, VRES_DDT_NONE, 2, __VA_ARGS__)              \
+    V(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, __VA_ARGS__)   \
+    V(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, __VA_ARGS__)
+
+/* The interaction variants: VRES_SPH_VARIANT(name, ddt, walls, visc, kernel) defines name_one with
+ * the options fixed (the compiler drops the unused branches) and its loops name_cpu / name_cuda. */
+#define VRES_SPH_VARIANT(name, ddt, walls, viscosity, kernel)                                                    \
     VRES_HD static inline void name##_one(size_t a, const vres_cells *g, const double *pos, const float *vel,    \
                                           const float *rho, const float *press, const double *mass,              \
                                           const uint8_t *type, vres_sph_consts C, double *ace, double *ar,       \
                                           double *visc)                                                          \
     {                                                                                                            \
-        vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, 0, NULL); \
+        vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, kernel, \
+                          0, NULL);                                                                              \
     }                                                                                                            \
     VRES_PARTICLE_LOOP(name, name##_one,                                                                         \
                        (const vres_cells *g, const double *pos, const float *vel, const float *rho,              \
@@ -432,29 +491,21 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
                         double *ace, double *ar, double *visc),                                                  \
                        (g, pos, vel, rho, press, mass, type, C, ace, ar, visc))
 
-/* The six wall and diffusion variants for one viscosity kind: prefix##plain, prefix##molteni,
+/* The nine wall and diffusion variants for one viscosity kind and kernel: prefix##plain, prefix##molteni,
  * prefix##fourtakas (no walls) and prefix##dbc, prefix##dbc_molteni, prefix##dbc_fourtakas. */
-#define VRES_SPH_VARIANTS(prefix, viscosity)                                       \
-    VRES_SPH_VARIANT(prefix##plain, VRES_DDT_NONE, 0, viscosity)                   \
-    VRES_SPH_VARIANT(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity)              \
-    VRES_SPH_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity)          \
-    VRES_SPH_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity)                     \
-    VRES_SPH_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity)          \
-    VRES_SPH_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)          \
-    VRES_SPH_VARIANT(prefix##flt, VRES_DDT_NONE, 2, viscosity)                     \
-    VRES_SPH_VARIANT(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity)          \
-    VRES_SPH_VARIANT(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity)
+#define VRES_SPH_VARIANTS(prefix, viscosity, kernel) \
+    VRES_SPH_NINE(VRES_SPH_VARIANT, prefix, viscosity, kernel)
 
-/* The same with shifting sums: VRES_SPH_SHIFT_VARIANT(name, ddt, walls, visc) defines name_cpu /
- * name_cuda taking shiftv [4n] after visc. */
-#define VRES_SPH_SHIFT_VARIANT(name, ddt, walls, viscosity)                                                      \
+/* The same with shifting sums: VRES_SPH_SHIFT_VARIANT(name, ddt, walls, visc, kernel) defines
+ * name_cpu / name_cuda taking shiftv [4n] after visc. */
+#define VRES_SPH_SHIFT_VARIANT(name, ddt, walls, viscosity, kernel)                                              \
     VRES_HD static inline void name##_one(size_t a, const vres_cells *g, const double *pos, const float *vel,    \
                                           const float *rho, const float *press, const double *mass,              \
                                           const uint8_t *type, vres_sph_consts C, double *ace, double *ar,       \
                                           double *visc, double *shiftv)                                          \
     {                                                                                                            \
-        vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, 1,    \
-                          shiftv);                                                                               \
+        vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, kernel, \
+                          1, shiftv);                                                                            \
     }                                                                                                            \
     VRES_PARTICLE_LOOP(name, name##_one,                                                                         \
                        (const vres_cells *g, const double *pos, const float *vel, const float *rho,              \
@@ -462,22 +513,18 @@ VRES_PARTICLE_LOOP(vres_sph_correct, vres_sph_correct_one,
                         double *ace, double *ar, double *visc, double *shiftv),                                  \
                        (g, pos, vel, rho, press, mass, type, C, ace, ar, visc, shiftv))
 
-/* The six shifting variants for one viscosity kind, named like VRES_SPH_VARIANTS'. */
-#define VRES_SPH_SHIFT_VARIANTS(prefix, viscosity)                                       \
-    VRES_SPH_SHIFT_VARIANT(prefix##plain, VRES_DDT_NONE, 0, viscosity)                   \
-    VRES_SPH_SHIFT_VARIANT(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity)              \
-    VRES_SPH_SHIFT_VARIANT(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##dbc, VRES_DDT_NONE, 1, viscosity)                     \
-    VRES_SPH_SHIFT_VARIANT(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##flt, VRES_DDT_NONE, 2, viscosity)                     \
-    VRES_SPH_SHIFT_VARIANT(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity)          \
-    VRES_SPH_SHIFT_VARIANT(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity)
+/* The nine shifting variants for one viscosity kind and kernel, named like VRES_SPH_VARIANTS'. */
+#define VRES_SPH_SHIFT_VARIANTS(prefix, viscosity, kernel) \
+    VRES_SPH_NINE(VRES_SPH_SHIFT_VARIANT, prefix, viscosity, kernel)
 
-VRES_SPH_VARIANTS(vres_sph_, VRES_VISC_ARTIFICIAL)        /* vres_sph_plain ... vres_sph_dbc_fourtakas */
-VRES_SPH_VARIANTS(vres_sph_laminar_, VRES_VISC_LAMINAR)   /* vres_sph_laminar_plain ... */
-VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_, VRES_VISC_ARTIFICIAL)         /* vres_sph_shift_plain ... */
-VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_laminar_, VRES_VISC_LAMINAR)    /* vres_sph_shift_laminar_plain ... */
+VRES_SPH_VARIANTS(vres_sph_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND)      /* vres_sph_plain ... */
+VRES_SPH_VARIANTS(vres_sph_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_WENDLAND) /* vres_sph_laminar_plain ... */
+VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND)      /* vres_sph_shift_plain ... */
+VRES_SPH_SHIFT_VARIANTS(vres_sph_shift_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_WENDLAND) /* vres_sph_shift_laminar_... */
+VRES_SPH_VARIANTS(vres_sph_cubic_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_CUBIC)      /* vres_sph_cubic_plain ... */
+VRES_SPH_VARIANTS(vres_sph_cubic_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC) /* vres_sph_cubic_laminar_... */
+VRES_SPH_SHIFT_VARIANTS(vres_sph_cubic_shift_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_CUBIC) /* vres_sph_cubic_shift_... */
+VRES_SPH_SHIFT_VARIANTS(vres_sph_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC)
 
 /* The 2D interaction (x-z plane) reads these arrays, all in cell order (slot s is particle
  * s): the positions and velocities split by axis so that the neighbour loop streams only what
@@ -547,11 +594,13 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
                                                                const vres_sph_2d *P, const vres_sph_consts *C,
                                                                double *ace, double *ar, double *visc,
                                                                double *shiftv, const int ddt, const int walls,
-                                                               const int viscosity, const int shift)
+                                                               const int viscosity, const int kernel,
+                                                               const int shift)
 {
     if (vres_type_is_imposed(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
-        if (shift) vres_sph_shift_sums(a, nb, m, P->x, NULL, P->z, 1, P->rho, P->mass, P->type, C, walls, shiftv);
+        if (shift)
+            vres_sph_shift_sums(a, nb, m, P->x, NULL, P->z, 1, P->rho, P->mass, P->type, C, walls, kernel, shiftv);
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);
@@ -560,6 +609,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
     const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2;
     const vres_wendland k = C->k;
+    const vres_cubic kc = C->kc;
+    const double ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_r(pa, inv_rhoa) : 0.0; /* a's tensile part */
     /* Visco of a fluid and of a wall neighbour: artificial viscosity alpha or laminar nu */
     const double visc_fluid = viscosity == VRES_VISC_LAMINAR ? C->nu : C->alpha;
     const double visc_wall = viscosity == VRES_VISC_LAMINAR ? C->nu_wall : C->alpha_wall;
@@ -645,14 +696,19 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
 #pragma omp simd
         for (int j = 0; j < np; j++) {
             const double dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j], mb = Q.mb[j], rhob = Q.rhob[j];
-            const double F = vres_wendland_f(k, sqrt(r2));
+            const double r = sqrt(r2);
+            const double F = kernel == VRES_KERNEL_CUBIC ? vres_cubic_f(kc, r) : vres_wendland_f(k, r);
             const double frx = F * dx, frz = F * dz;
             const double dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j];
             const double inv_r2eta = 1.0 / (r2 + eta2), inv_rhob = Q.inv_rhob[j];
             T.arp[j] = mb * (dvx * frx + dvz * frz);
             const double dot = dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
             T.rate[j] = dot_rr2;
-            const double prs = mb * (pa + Q.pb[j]) * inv_rhoa * inv_rhob; /* vres_sph_pair_pressure */
+            /* vres_sph_pair_pressure, or _tensile with the cubic spline */
+            const double prs = kernel == VRES_KERNEL_CUBIC
+                                   ? mb * ((pa + Q.pb[j]) * inv_rhoa * inv_rhob +
+                                           vres_cubic_tensile(kc, r, ra, vres_cubic_tensile_r(Q.pb[j], inv_rhob)))
+                                   : mb * (pa + Q.pb[j]) * inv_rhoa * inv_rhob;
             T.px[j] = prs * frx;
             T.pz[j] = prs * frz;
             if (viscosity == VRES_VISC_LAMINAR) { /* vres_sph_pair_laminar */
@@ -726,7 +782,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vres_cells *g, const vres_sph_2d *P,
                                                            const vres_sph_consts *C, double *ace, double *ar,
                                                            double *visc, double *shiftv, const int ddt,
-                                                           const int walls, const int viscosity, const int shift)
+                                                           const int walls, const int viscosity, const int kernel,
+                                                           const int shift)
 {
     vres_cell_range nb[9];
     size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
@@ -734,7 +791,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vr
     if (g->begin[cell] == end) return;
     if (cell < g->ncells) m = vres_cells_rows2d(g, (int)(cell % (size_t)g->nc[0]), (int)(cell / (size_t)g->nc[0]), nb);
     for (size_t a = g->begin[cell]; a < end; a++)
-        vres_sph_interact2d(a, nb, m, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift);
+        vres_sph_interact2d(a, nb, m, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift);
 }
 
 /* VRES_CELL_LOOP(name, fn, (params), (args)): VRES_PARTICLE_LOOP over cells. On the CPU the
@@ -757,69 +814,73 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vr
  * with the same bits. */
 #define VRES_SPH_CLONES VRES_CLONES
 
-/* VRES_SPH_VARIANT2D(name, ddt, walls, visc, shift) defines name_one (one cell, options fixed)
+/* VRES_SPH_VARIANT2D(name, ddt, walls, visc, kernel, shift) defines name_one (one cell, options fixed)
  * and its loops name_cpu / name_cuda over cells 0..ncells (n = g->ncells + 1); shiftv is
  * written only by the shifting variants (NULL for the others). */
-#define VRES_SPH_VARIANT2D(name, ddt, walls, viscosity, shift)                                                    \
+#define VRES_SPH_VARIANT2D(name, ddt, walls, viscosity, kernel, shift)                                            \
     VRES_HD VRES_SPH_CLONES static inline void name##_one(size_t cell, const vres_cells *g, const vres_sph_2d *P, \
                                           const vres_sph_consts *C, double *ace, double *ar, double *visc,        \
                                           double *shiftv)                                                         \
     {                                                                                                             \
-        vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift);                      \
+        vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift);              \
     }                                                                                                             \
     VRES_CELL_LOOP(name, name##_one,                                                                          \
                        (const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C, double *ace,         \
                         double *ar, double *visc, double *shiftv),                                                \
                        (g, P, C, ace, ar, visc, shiftv))
 
-/* The twelve 2D variants of one viscosity kind and shifting choice (walls x density diffusion). */
-#define VRES_SPH_VARIANTS2D(prefix, viscosity, shift)                                       \
-    VRES_SPH_VARIANT2D(prefix##plain, VRES_DDT_NONE, 0, viscosity, shift)                   \
-    VRES_SPH_VARIANT2D(prefix##molteni, VRES_DDT_MOLTENI, 0, viscosity, shift)              \
-    VRES_SPH_VARIANT2D(prefix##fourtakas, VRES_DDT_FOURTAKAS, 0, viscosity, shift)          \
-    VRES_SPH_VARIANT2D(prefix##dbc, VRES_DDT_NONE, 1, viscosity, shift)                     \
-    VRES_SPH_VARIANT2D(prefix##dbc_molteni, VRES_DDT_MOLTENI, 1, viscosity, shift)          \
-    VRES_SPH_VARIANT2D(prefix##dbc_fourtakas, VRES_DDT_FOURTAKAS, 1, viscosity, shift)          \
-    VRES_SPH_VARIANT2D(prefix##flt, VRES_DDT_NONE, 2, viscosity, shift)                     \
-    VRES_SPH_VARIANT2D(prefix##flt_molteni, VRES_DDT_MOLTENI, 2, viscosity, shift)          \
-    VRES_SPH_VARIANT2D(prefix##flt_fourtakas, VRES_DDT_FOURTAKAS, 2, viscosity, shift)
+/* The nine 2D variants of one viscosity kind, kernel and shifting choice (walls x density diffusion). */
+#define VRES_SPH_VARIANTS2D(prefix, viscosity, kernel, shift) \
+    VRES_SPH_NINE(VRES_SPH_VARIANT2D, prefix, viscosity, kernel, shift)
 
-VRES_SPH_VARIANTS2D(vres_sph2d_, VRES_VISC_ARTIFICIAL, 0)               /* vres_sph2d_plain ... */
-VRES_SPH_VARIANTS2D(vres_sph2d_laminar_, VRES_VISC_LAMINAR, 0)          /* vres_sph2d_laminar_plain ... */
-VRES_SPH_VARIANTS2D(vres_sph2d_shift_, VRES_VISC_ARTIFICIAL, 1)         /* vres_sph2d_shift_plain ... */
-VRES_SPH_VARIANTS2D(vres_sph2d_shift_laminar_, VRES_VISC_LAMINAR, 1)    /* vres_sph2d_shift_laminar_plain ... */
+#define VRES_W VRES_KERNEL_WENDLAND
+#define VRES_C VRES_KERNEL_CUBIC
+VRES_SPH_VARIANTS2D(vres_sph2d_, VRES_VISC_ARTIFICIAL, VRES_W, 0)                  /* vres_sph2d_plain ... */
+VRES_SPH_VARIANTS2D(vres_sph2d_laminar_, VRES_VISC_LAMINAR, VRES_W, 0)             /* vres_sph2d_laminar_plain ... */
+VRES_SPH_VARIANTS2D(vres_sph2d_shift_, VRES_VISC_ARTIFICIAL, VRES_W, 1)            /* vres_sph2d_shift_plain ... */
+VRES_SPH_VARIANTS2D(vres_sph2d_shift_laminar_, VRES_VISC_LAMINAR, VRES_W, 1)       /* vres_sph2d_shift_laminar_... */
+VRES_SPH_VARIANTS2D(vres_sph2d_cubic_, VRES_VISC_ARTIFICIAL, VRES_C, 0)            /* vres_sph2d_cubic_plain ... */
+VRES_SPH_VARIANTS2D(vres_sph2d_cubic_laminar_, VRES_VISC_LAMINAR, VRES_C, 0)       /* vres_sph2d_cubic_laminar_... */
+VRES_SPH_VARIANTS2D(vres_sph2d_cubic_shift_, VRES_VISC_ARTIFICIAL, VRES_C, 1)      /* vres_sph2d_cubic_shift_... */
+VRES_SPH_VARIANTS2D(vres_sph2d_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_C, 1) /* vres_sph2d_cubic_shift_lam... */
+#undef VRES_W
+#undef VRES_C
 
 /* The general 2D loop: every option read at run time (a benchmarking aid that shows what the
  * specialised variants save; vres-run uses it with VRES_LOOP=general). */
 VRES_HD VRES_SPH_CLONES static inline void vres_sph2d_general_one(size_t cell, const vres_cells *g, const vres_sph_2d *P,
                                                   const vres_sph_consts *C, double *ace, double *ar, double *visc,
-                                                  double *shiftv, int ddt, int walls, int viscosity, int shift)
+                                                  double *shiftv, int ddt, int walls, int viscosity, int kernel,
+                                                  int shift)
 {
-    vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift);
+    vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift);
 }
 
-/* vres_sph2d_general_cpu / _cuda (n = ncells + 1, g, P, C, ace, ar, visc, shiftv, ddt, walls, visc kind, shift). */
+/* vres_sph2d_general_cpu / _cuda (n = ncells + 1, g, P, C, ace, ar, visc, shiftv, ddt, walls, visc kind, kernel,
+ * shift). */
 VRES_CELL_LOOP(vres_sph2d_general, vres_sph2d_general_one,
                    (const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C, double *ace, double *ar,
-                    double *visc, double *shiftv, int ddt, int walls, int viscosity, int shift),
-                   (g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift))
+                    double *visc, double *shiftv, int ddt, int walls, int viscosity, int kernel, int shift),
+                   (g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift))
 
 /* The general 3D loop (vres_sph_interact with every option read at run time), as above. */
 VRES_HD static inline void vres_sph_general_one(size_t a, const vres_cells *g, const double *pos, const float *vel,
                                                 const float *rho, const float *press, const double *mass,
                                                 const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
                                                 double *visc, double *shiftv, int ddt, int walls, int viscosity,
-                                                int shift)
+                                                int kernel, int shift)
 {
-    vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, shift, shiftv);
+    vres_sph_interact(a, g, pos, vel, rho, press, mass, type, C, ace, ar, visc, ddt, walls, viscosity, kernel, shift,
+                      shiftv);
 }
 
-/* vres_sph_general_cpu / _cuda (n, g, pos, ..., visc, shiftv, ddt, walls, visc kind, shift). */
+/* vres_sph_general_cpu / _cuda (n, g, pos, ..., visc, shiftv, ddt, walls, visc kind, kernel, shift). */
 VRES_PARTICLE_LOOP(vres_sph_general, vres_sph_general_one,
                    (const vres_cells *g, const double *pos, const float *vel, const float *rho, const float *press,
                     const double *mass, const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
-                    double *visc, double *shiftv, int ddt, int walls, int viscosity, int shift),
-                   (g, pos, vel, rho, press, mass, type, C, ace, ar, visc, shiftv, ddt, walls, viscosity, shift))
+                    double *visc, double *shiftv, int ddt, int walls, int viscosity, int kernel, int shift),
+                   (g, pos, vel, rho, press, mass, type, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel,
+                    shift))
 
 /* The shifting displacement (m) of fluid or buffer particle i for a step dt (s) at speed |v_i|, into
  * shiftv[4i..4i+2] (DualSPHysics' JSphShifting): dr = A h |v| dt grad C, A = ShiftCoef

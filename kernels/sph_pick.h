@@ -1,6 +1,6 @@
 /* sph_pick.h - choosing, once per run, the interaction loop variant of kernels/sph.h that fits a
- * scene (viscosity kind x walls present x density diffusion kind, with or without the shifting
- * sums; 2D or 3D). VRES_SPH_PICKERS(_cpu) or VRES_SPH_PICKERS(_cuda) defines the three choosers
+ * scene (kernel x viscosity kind x walls present x density diffusion kind, with or without the
+ * shifting sums; 2D or 3D). VRES_SPH_PICKERS(_cpu) or VRES_SPH_PICKERS(_cuda) defines the three choosers
  * over one device's loops, so the CPU backend (lib/solver_cpu.c) and the CUDA backend
  * (lib/solver_cuda.cu) pick from the same tables. The choosers take the scene's options as
  * plain values (a vres_sph_pick), so the physics knows nothing of the solver's configuration. */
@@ -14,6 +14,7 @@ typedef struct vres_sph_pick {
     int viscosity;      /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR */
     int walls;          /* VRES_WALLS_*: none, walls, walls with floating bodies */
     int ddt;            /* VRES_DDT_* density diffusion kind */
+    int kernel;         /* VRES_KERNEL_CUBIC or VRES_KERNEL_WENDLAND */
 } vres_sph_pick;
 
 /* A 3D interaction loop variant (vres_sph_*). */
@@ -40,26 +41,31 @@ typedef void (*vres_interact2d_fn)(size_t n, const vres_cells *g, const vres_sph
 /* pick_interaction (3D, no shifting sums), pick_interaction_shift (3D, with them) and
  * pick_interaction2d (2D, shift 0 or 1) for the scene's options p, over the loops with suffix
  * sfx: no diffusion code when DensityDT=0, no wall tests without walls, no floating-body terms
- * without floating bodies, only the viscosity asked for. */
+ * without floating bodies, only the viscosity and the kernel asked for. */
 #define VRES_SPH_PICKERS(sfx)                                                                          \
     static vres_interact_fn pick_interaction(vres_sph_pick p)                                          \
     {                                                                                                  \
-        static const vres_interact_fn table[2][3][3] = {VRES_SPH_ROW9(vres_sph_, sfx),                 \
-                                                        VRES_SPH_ROW9(vres_sph_laminar_, sfx)};        \
-        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt];                           \
+        static const vres_interact_fn table[2][2][3][3] = {                                            \
+            {VRES_SPH_ROW9(vres_sph_, sfx), VRES_SPH_ROW9(vres_sph_laminar_, sfx)},                    \
+            {VRES_SPH_ROW9(vres_sph_cubic_, sfx), VRES_SPH_ROW9(vres_sph_cubic_laminar_, sfx)}};       \
+        return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }                                                                                                  \
     static vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                              \
     {                                                                                                  \
-        static const vres_interact_shift_fn table[2][3][3] = {VRES_SPH_ROW9(vres_sph_shift_, sfx),     \
-                                                              VRES_SPH_ROW9(vres_sph_shift_laminar_, sfx)}; \
-        return table[p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt];                           \
+        static const vres_interact_shift_fn table[2][2][3][3] = {                                      \
+            {VRES_SPH_ROW9(vres_sph_shift_, sfx), VRES_SPH_ROW9(vres_sph_shift_laminar_, sfx)},        \
+            {VRES_SPH_ROW9(vres_sph_cubic_shift_, sfx), VRES_SPH_ROW9(vres_sph_cubic_shift_laminar_, sfx)}}; \
+        return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }                                                                                                  \
     static vres_interact2d_fn pick_interaction2d(vres_sph_pick p, int shift)                           \
     {                                                                                                  \
-        static const vres_interact2d_fn table[2][2][3][3] = {                                          \
-            {VRES_SPH_ROW9(vres_sph2d_, sfx), VRES_SPH_ROW9(vres_sph2d_laminar_, sfx)},                \
-            {VRES_SPH_ROW9(vres_sph2d_shift_, sfx), VRES_SPH_ROW9(vres_sph2d_shift_laminar_, sfx)}};   \
-        return table[shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt];                    \
+        static const vres_interact2d_fn table[2][2][2][3][3] = {                                       \
+            {{VRES_SPH_ROW9(vres_sph2d_, sfx), VRES_SPH_ROW9(vres_sph2d_laminar_, sfx)},               \
+             {VRES_SPH_ROW9(vres_sph2d_shift_, sfx), VRES_SPH_ROW9(vres_sph2d_shift_laminar_, sfx)}},  \
+            {{VRES_SPH_ROW9(vres_sph2d_cubic_, sfx), VRES_SPH_ROW9(vres_sph2d_cubic_laminar_, sfx)},   \
+             {VRES_SPH_ROW9(vres_sph2d_cubic_shift_, sfx),                                             \
+              VRES_SPH_ROW9(vres_sph2d_cubic_shift_laminar_, sfx)}}};                                  \
+        return table[p.kernel == VRES_KERNEL_CUBIC][shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }
 
 #endif

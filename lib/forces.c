@@ -21,6 +21,7 @@ typedef struct force_cfg {
     int visco_kind;     /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment) */
     double visco_wall;  /* Visco * ViscoBoundFactor: alpha, or nu (m^2/s) when laminar */
     double cs0;         /* speed of sound c0 (m/s), in the artificial viscosity */
+    int kernel;         /* VRES_KERNEL_CUBIC or VRES_KERNEL_WENDLAND (the store's Kernel, as vres-run) */
     int periodic[3];    /* 1 on the axes the store makes periodic */
 } force_cfg;
 
@@ -85,10 +86,11 @@ static int read_cfg(const vres_store *s, const char *where, force_cfg *c)
     memset(c, 0, sizeof *c);
     c->dim = s->dim;
     double kernel = vres_params_get(P, "Kernel", 2);
-    if (kernel != 2) {
-        vres_error("%sKernel=%g: vres-forces computes with the Wendland kernel (2), as vres-run does", where, kernel);
+    if (kernel != 1 && kernel != 2) {
+        vres_error("%sKernel=%g: vres-forces knows 1 (cubic spline) and 2 (Wendland), as vres-run does", where, kernel);
         return -1;
     }
+    c->kernel = kernel == 1 ? VRES_KERNEL_CUBIC : VRES_KERNEL_WENDLAND;
     c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", VRES_VISC_ARTIFICIAL);
     if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR) {
         vres_error("%sViscoTreatment=%g: vres-forces knows 1 (artificial) and 3 (laminar) viscosity", where,
@@ -199,11 +201,16 @@ static size_t particle_force(const vres_domain *d, size_t i, const fluid_set *f,
                             xa[2] - (f->pos[3 * b + 2] + nb[q].shift[2])};
             double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
             if (r2 >= C->fourh2 || r2 < 1e-18 * C->fourh2) continue; /* the solver's own test */
-            double F = vres_wendland_f(C->k, sqrt(r2));
+            double r = sqrt(r2), F = vres_sph_kernel_f(C, C->kernel, r);
             double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
             double dv[3] = {va[0] - f->vel[3 * b], va[1] - f->vel[3 * b + 1], va[2] - f->vel[3 * b + 2]};
             double mb = f->mass[b], rhob = f->rho[b], inv_r2eta = 1.0 / (r2 + C->eta2);
-            vres_sph_pair_pressure(mb, pa, f->press[b], inv_rhoa, 1.0 / rhob, fr, acc);
+            if (C->kernel == VRES_KERNEL_CUBIC) /* with the tensile correction, as the solver */
+                vres_sph_pair_pressure_tensile(
+                    mb, pa, f->press[b], inv_rhoa, 1.0 / rhob,
+                    vres_cubic_tensile(C->kc, r, vres_cubic_tensile_r(pa, inv_rhoa), vres_cubic_tensile_r(f->press[b], 1.0 / rhob)),
+                    fr, acc);
+            else vres_sph_pair_pressure(mb, pa, f->press[b], inv_rhoa, 1.0 / rhob, fr, acc);
             if (c->visco_kind == VRES_VISC_LAMINAR)
                 vres_sph_pair_laminar(C->nu_wall, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc);
             else
@@ -221,6 +228,7 @@ static size_t particle_force(const vres_domain *d, size_t i, const fluid_set *f,
 static vres_sph_consts domain_consts(const vres_domain *d, const force_cfg *c)
 {
     vres_sph_consts C = vres_sph_consts_make(c->dim, d->h, c->cs0);
+    C.kernel = c->kernel;
     C.alpha_wall = c->visco_kind == VRES_VISC_ARTIFICIAL ? c->visco_wall : 0;
     C.nu_wall = c->visco_kind == VRES_VISC_LAMINAR ? c->visco_wall : 0;
     return C;

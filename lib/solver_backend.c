@@ -20,6 +20,7 @@ vres_sph_consts vres_run_consts(const run_cfg *c, const run_dom *dc)
     C.rho0 = c->rho0;
     C.rho0_over_B = c->rho0 / c->B;
     C.inv_gamma = 1.0 / c->gamma;
+    C.kernel = c->kernel;
     memcpy(C.g, c->g, sizeof C.g);
     return C;
 }
@@ -35,6 +36,6 @@ vres_wall_body *vres_wall_bodies(const vres_store *s)
 vres_sph_pick vres_run_pick(const run_cfg *c, const run_dom *dc)
 {
     vres_sph_pick p = {c->visco_kind, dc->nfloating ? VRES_WALLS_FLOATING : dc->nwall ? VRES_WALLS_DBC : VRES_WALLS_NONE,
-                       c->ddt};
+                       c->ddt, c->kernel};
     return p;
 }

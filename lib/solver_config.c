@@ -210,7 +210,9 @@ static void read_options(const vres_params *P, run_cfg *c, int *bad)
     if (c->verlet && !(c->verlet_steps >= 1 && c->verlet_steps == vres_params_get(P, "VerletSteps", 40)))
         vres_error("VerletSteps=%g: must be a whole number of steps, at least 1",
                    vres_params_get(P, "VerletSteps", 40)), *bad = 1;
-    if ((v = vres_params_get(P, "Kernel", 2)) != 2) not_impl(bad, "Kernel", v, "not Wendland", "2 (Wendland)");
+    v = vres_params_get(P, "Kernel", 2);
+    c->kernel = v == 1 ? VRES_KERNEL_CUBIC : VRES_KERNEL_WENDLAND;
+    if (v != 1 && v != 2) not_impl(bad, "Kernel", v, "unknown", "1 (cubic spline), 2 (Wendland)");
     c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", 1);
     if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR)
         not_impl(bad, "ViscoTreatment", vres_params_get(P, "ViscoTreatment", 1),
@@ -333,6 +335,10 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
         vres_error("Boundary=2 (mDBC) with floating bodies: not implemented yet; vres-run runs floating bodies with "
                    "DBC walls (Boundary=1)"), bad = 1;
     read_options(P, c, &bad);
+    if (s->ndomains > 1 && c->kernel == VRES_KERNEL_CUBIC)
+        vres_error("Kernel=1 (cubic spline) in a store of %zu domains: variable resolution runs with the Wendland "
+                   "kernel only (Kernel=2; or run the case at one resolution: vres-partition --single)",
+                   s->ndomains), bad = 1;
     if (s->ndomains > 1 && c->verlet)
         vres_error("StepAlgorithm=1 (Verlet) with %zu domains: the coupling of variable resolution runs the "
                    "Symplectic scheme only (StepAlgorithm=2)", s->ndomains), bad = 1;
@@ -410,7 +416,8 @@ char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu)
     if (c->nzones > 0) snprintf(zones, sizeof zones, " inout(%d zone%s)", c->nzones, c->nzones == 1 ? "" : "s");
     char minf[48] = "";
     if (c->min_fluid > 0) snprintf(minf, sizeof minf, " minfluidstop(%g)", c->min_fluid);
-    return vres_xasprintf("wcsph-%dd wendland-c2 tait(gamma=%g) %s%s%s%s%s%s%s%s %s%s %s%s", c->dim, c->gamma, visc,
+    return vres_xasprintf("wcsph-%dd %s tait(gamma=%g) %s%s%s%s%s%s%s%s %s%s %s%s", c->dim,
+                          c->kernel == VRES_KERNEL_CUBIC ? "cubic-spline(tensile)" : "wendland-c2", c->gamma, visc,
                           walls, moving, floating, ddt, shift, per, zones, step, minf, dev,
                           c->general ? " general-loop" : "");
 }

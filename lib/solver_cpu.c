@@ -122,14 +122,14 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
         vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, d->rho, d->press, x->inv_rho, d->mass_p, d->type};
         if (c->general)
             vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
-                                   c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, shift);
+                                   c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift);
         else
             pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace,
                                                                 x->ar, x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
                              x->ar, x->visc, x->shiftv, c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind,
-                             shift);
+                             c->kernel, shift);
     else if (shift)
         x->interact_shift(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
                           x->ar, x->visc, x->shiftv);

@@ -378,14 +378,14 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
             return 0;
         if (c->general)
             vres_sph2d_general_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
-                                    c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, shift);
+                                    c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift);
         else
             pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace,
                                                                 x->ar, x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cuda(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p,
                               x->dev.type, x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
-                              vres_run_pick(c, &x->dc).walls, c->visco_kind, shift);
+                              vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift);
     else if (shift)
         x->interact_shift(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type,
                           x->C, x->ace, x->ar, x->visc, x->shiftv);

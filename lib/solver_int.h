@@ -34,6 +34,7 @@ typedef struct run_cfg {
     double visco;         /* Visco: artificial viscosity alpha, or laminar kinematic viscosity (m^2/s) */
     double visco_bound;   /* ViscoBoundFactor: multiplies Visco for fluid-wall pairs */
     int ddt;              /* VRES_DDT_* density diffusion kind */
+    int kernel;           /* VRES_KERNEL_CUBIC (Kernel=1, with its tensile correction) or VRES_KERNEL_WENDLAND (2) */
     double ddt_delta;     /* its coefficient delta */
     double g[3];          /* gravity (m/s^2) */
     double tmax;          /* end time (s) */

@@ -30,14 +30,33 @@
 #   last stderr line ("coupling of the N domains: ..."); for reference, the same case in
 #   single resolution (vres-partition --single) at the box's dp, from its own state at
 #   WARMVRES s.
+# Table 5 (phases): where the time loop goes (vres-run --profile, RUNDIR/phases.tsv, named
+#   profile.tsv by vres-run before 2026-12-02, read when there is no phases.tsv): the
+#   percent of the loop in each phase (sort, forces, integrate, walls, mdbc, check, coupling,
+#   output, other) and the microseconds per step, for the 2D dam break (dp 0.01, from t = 0)
+#   and the two-domain dam break of table 4 (from its warm state at WARMVRES s), about
+#   STEPSPHASE steps each, one run each at PHASE_THREADS threads. Each run writes two snapshots
+#   (its start and its end), which is the output share: it shrinks as STEPSPHASE grows.
+# Table 6 (scaling): cost per particle-step (microseconds) against the particle count, about
+#   STEPSSCALE steps each (one run, SCALE_THREADS threads, from t = 0: the start's time step),
+#   of the 2D dam break (cases/dsph_dambreak2d) at the dp values SCALE2D_DPS and of the 3D
+#   one (cases/bench_dambreak3d) at SCALE3D_DPS: by default about 2e4, 1e5, 5e5 and 1e6
+#   particles in 2D, 1.5e4, 1.1e5, 3.9e5 and 1e6 in 3D. Its cost, estimated from the figures
+#   of pipelines/reports/bench.txt (2 threads: 0.5-0.6 us per particle-step in 2D, 8.8 in 3D at
+#   1e6) and not measured with this table: 1.6e6 particles x 20 steps x 0.6 us = 20 s in 2D,
+#   1.5e6 x 20 x 9 us = 4.5 min in 3D (3 of them at the largest size), plus vres-gencase's
+#   drawing of each store once (kept in OUTDIR and reused). Smaller sets: SCALE2D_DPS and
+#   SCALE3D_DPS.
 #
 #   bash pipelines/bench.sh [OUTDIR]      (default build/bench; the stores are kept there and
 #                                          reused, the run directories are replaced)
 # Environment: STEPS (60), REPEATS (3), STEPS3D (4), BENCH3D (1), MEM3D_GIB (1: the 3D run
 # holds about 0.3 GB), DPVRES (0.01), WARMVRES (0.5), STEPSVRES (1000), BENCH_TABLES (the
 # tables to make, of "2d 3d loop vres"; default all) and VRES_BIN (the tools' directory,
-# default bin/). The coupled runs set OMP_WAIT_POLICY=passive unless it is set: on a busy
-# machine spinning threads only steal time.
+# default bin/), STEPSPHASE (200), PHASE_THREADS (2, or 1 on one core), STEPSSCALE (20),
+# SCALE_THREADS (likewise), SCALE2D_DPS ("0.01 0.0045 0.002 0.0014"), SCALE3D_DPS ("0.02 0.01
+# 0.0065 0.0045"). BENCH_TABLES names also "phases" and "scaling". The coupled runs set
+# OMP_WAIT_POLICY=passive unless it is set: on a busy machine spinning threads only steal time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-build/bench}
@@ -51,7 +70,14 @@ MEM3D_GIB=${MEM3D_GIB:-1}
 DPVRES=${DPVRES:-0.01}
 WARMVRES=${WARMVRES:-0.5}
 STEPSVRES=${STEPSVRES:-1000}
-BENCH_TABLES=${BENCH_TABLES:-2d 3d loop vres}
+BENCH_TABLES=${BENCH_TABLES:-2d 3d loop vres phases scaling}
+TH2=$(($(nproc) < 2 ? 1 : 2))
+STEPSPHASE=${STEPSPHASE:-200}
+PHASE_THREADS=${PHASE_THREADS:-$TH2}
+STEPSSCALE=${STEPSSCALE:-20}
+SCALE_THREADS=${SCALE_THREADS:-$TH2}
+SCALE2D_DPS=${SCALE2D_DPS:-0.01 0.0045 0.002 0.0014}
+SCALE3D_DPS=${SCALE3D_DPS:-0.02 0.01 0.0065 0.0045}
 DB=cases/dsph_dambreak2d/dambreak2d_Def.xml
 DB3=cases/bench_dambreak3d/bench_dambreak3d_Def.xml
 TG=cases/taylor_green2d/taylor_green2d_Def.xml
@@ -263,6 +289,73 @@ if want vres; then
                 split(f, v, " ")
                 printf "%s\t%s\t%d\t%d\t%d\t%.4g\t%.3f\t%s\t%s\t%s\t%s\t%s\n", name, dp, n, th, v[1], v[2],
                     (v[2] > 0 ? 1e6 / v[2] : 0), v[3], v[4], v[5], v[6], v[7] }'
+        done
+    done
+fi
+
+# PHASES: the phase columns of table 5, in phases.tsv's order
+PHASES="sort forces integrate walls mdbc check coupling output other"
+
+# phase_row NAME PARTICLES THREADS STEPS RUNDIR: one line of table 5 from RUNDIR/phases.tsv (or
+# an older vres-run's profile.tsv): percent of the loop per phase, by the phases' names ("-" for
+# one the table lacks)
+phase_row() {
+    local tsv=$5/phases.tsv
+    [ -f "$tsv" ] || tsv=$5/profile.tsv
+    awk -F'\t' -v name="$1" -v n="$2" -v th="$3" -v steps="$4" -v phases="$PHASES" '
+        !/^#/ {pct[$1] = $3; us[$1] = $4}
+        END {
+            if (!("total" in us)) {print "bench.sh: no total in " FILENAME > "/dev/stderr"; exit 1}
+            printf "%s\t%d\t%d\t%d", name, n, th, steps
+            k = split(phases, ph, " ")
+            for (i = 1; i <= k; i++) printf "\t%s", (ph[i] in pct) ? pct[ph[i]] : "-"
+            printf "\t%s\n", us["total"] }' "$tsv"
+}
+
+if want phases; then
+    printf '\n# where the time loop goes (vres-run --profile): percent of the loop per phase, %s threads;\n' \
+        "$PHASE_THREADS"
+    printf '# about %s steps: dambreak2d-20k from t = 0, dambreak2d-vres (table 4'"'"'s two domains) from its state at %s s\n' \
+        "$STEPSPHASE" "$WARMVRES"
+    printf 'case\tparticles\tthreads\tsteps'
+    for p in $PHASES; do printf '\t%s_pct' "$p"; done
+    printf '\tus_per_step\n'
+    gen dambreak2d-20k "$DB" --dp 0.01
+    rd=$out/phase-dambreak2d-20k
+    rm -rf "$rd"
+    tmax=$(tmax_for "$out/dambreak2d-20k.h5" "$STEPSPHASE")
+    OMP_NUM_THREADS=$PHASE_THREADS "$BIN/vres-run" -q --profile --threads "$PHASE_THREADS" --tmax "$tmax" \
+        --tout "$tmax" "$out/dambreak2d-20k.h5" -o "$rd" 2>/dev/null
+    phase_row dambreak2d-20k "$(particles "$out/dambreak2d-20k.h5")" "$PHASE_THREADS" "$(col "$rd" step)" "$rd"
+    genpart dambreak2d-vres "$DBV" "$DPVRES"
+    warm dambreak2d-vres "$WARMVRES"
+    wd=$out/warm-dambreak2d-vres
+    rd=$out/phase-dambreak2d-vres
+    rm -rf "$rd"
+    t0=$(col "$wd" time_s)
+    tmax=$(awk -v t="$t0" -v n="$STEPSPHASE" -v dt="$(col "$wd" dt_s)" 'BEGIN {printf "%.9g", t + n * dt}')
+    OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} OMP_NUM_THREADS=$PHASE_THREADS "$BIN/vres-run" -q --profile \
+        --device cpu --threads "$PHASE_THREADS" --tmax "$tmax" \
+        --tout "$(awk -v a="$tmax" -v b="$t0" 'BEGIN {print a - b}')" --restart "$wd/snap_00001.h5" -o "$rd" 2>/dev/null
+    phase_row dambreak2d-vres "$(particles "$wd/snap_00001.h5")" "$PHASE_THREADS" \
+        "$(($(col "$rd" step) - $(col "$wd" step)))" "$rd"
+fi
+
+if want scaling; then
+    printf '\n# cost per particle-step against size (about %s steps from t = 0, one run each, %s threads): the\n' \
+        "$STEPSSCALE" "$SCALE_THREADS"
+    printf '# 2D dam break (%s) and the 3D one (%s) at several dp\n' "$DB" "$DB3"
+    printf "$header"
+    for spec in "2d $DB $SCALE2D_DPS" "3d $DB3 $SCALE3D_DPS"; do
+        set -- $spec
+        dim=$1 xml=$2
+        shift 2
+        for dp in "$@"; do
+            name=scale$dim-$dp
+            gen "$name" "$xml" --dp "$dp"
+            n=$(particles "$out/$name.h5")
+            f=$(rate "$name" "$(tmax_for "$out/$name.h5" "$STEPSSCALE")" "$SCALE_THREADS" specialised 1)
+            row "dambreak$dim" "$dp" "$n" "$SCALE_THREADS" $f
         done
     done
 fi

@@ -150,10 +150,10 @@ static rates interact(int k, vres_domain *d, const vres_cells *g, const vres_sph
     else if (k == 1) vres_sph2d_dbc_molteni_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL);
     else if (k == 2)
         vres_sph_general_cpu(n, g, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, r.ace, r.ar, r.visc, NULL,
-                             VRES_DDT_MOLTENI, 1, VRES_VISC_ARTIFICIAL, 0);
+                             VRES_DDT_MOLTENI, 1, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
     else
         vres_sph2d_general_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL, VRES_DDT_MOLTENI, 1,
-                               VRES_VISC_ARTIFICIAL, 0);
+                               VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
     free(x), free(ir), free(v);
     return r;
 }
@@ -232,7 +232,8 @@ START_TEST(buffer_gets_fluid_shifting_sums)
                     vres_sph2d_shift_dbc_molteni_cpu(g[t].ncells + 1, &g[t], &P, &C, ace[t], ar[t], vi[t], sv[t]);
                 else
                     vres_sph_general_cpu(n, &g[t], d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, C, ace[t],
-                                         ar[t], vi[t], sv[t], VRES_DDT_MOLTENI, 1, VRES_VISC_ARTIFICIAL, 1);
+                                         ar[t], vi[t], sv[t], VRES_DDT_MOLTENI, 1, VRES_VISC_ARTIFICIAL,
+                                         VRES_KERNEL_WENDLAND, 1);
                 free(x), free(ir), free(v);
             }
             /* the buffer particle, in the bottom row next to the walls: mode 1 cancels (NaN) */

@@ -346,7 +346,7 @@ START_TEST(parameters_notes_and_errors)
     ck_assert_ptr_nonnull(per);
     ck_assert(per->v[0] == 0 && per->v[1] == 0 && per->v[2] == 0);
     vres_store_free(s);
-    const char *bad[] = {P("FtIgnoreRadius", "1"), P("StepAlgorithm", "3"), P("Kernel", "1"), P("RigidAlgorithm", "3"),
+    const char *bad[] = {P("FtIgnoreRadius", "1"), P("StepAlgorithm", "3"), P("Kernel", "3"), P("RigidAlgorithm", "3"),
                          P("NoSuchKey", "1"), P("Visco", "abc"), P("TimeMax", "0"), P("DtFixedFile", "dt.csv"),
                          P("RhopOutMin", "1100"), P("YPeriodicIncX", "0")};
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
@@ -354,6 +354,12 @@ START_TEST(parameters_notes_and_errors)
         snprintf(exec, sizeof exec, "<parameters>%s</parameters>", bad[i]);
         ck_assert_msg(rd(mkcase("", DEF2D, WATER, "", exec)) == NULL, "accepted %s", bad[i]);
     }
+    /* the cubic spline (Kernel=1) is implemented: kept as given */
+    s = rd(mkcase("", DEF2D, WATER, "", "<parameters>" P("Kernel", "1") P("Visco", "0.02") P("TimeMax", "1")
+                                        P("TimeOut", "0.1") "</parameters>"));
+    ck_assert_ptr_nonnull(s);
+    NEAR(par(s, "Kernel"), 1, 0);
+    vres_store_free(s);
 }
 END_TEST
 

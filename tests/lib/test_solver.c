@@ -22,6 +22,7 @@
 
 #include "../kernels/eos.h"
 #include "../kernels/sph.h"
+#include "../kernels/sph_pick.h"
 #include "cells.h"
 #include "check_run.h"
 #include "solver_motion.h"
@@ -297,7 +298,7 @@ START_TEST(interaction2d_equals_3d)
             if (k > 4 && i < 3) continue; /* a free surface and a hole: different neighbour counts */
             size_t j = vres_domain_push(&d, x, k < 0 ? VRES_FIXED : VRES_FLUID, 0);
             d.rho[j] = (float)(1000 + 5 * rand() / (double)RAND_MAX);
-            d.press[j] = (float)(1000 * rand() / (double)RAND_MAX);
+            d.press[j] = (float)(1300 * rand() / (double)RAND_MAX - 300); /* some negative: both tensile R */
             d.mass_p[j] = 0.1;
             if (k >= 0) d.vel[3 * j] = (float)(rand() / (double)RAND_MAX - 0.5),
                         d.vel[3 * j + 2] = (float)(rand() / (double)RAND_MAX - 0.5);
@@ -320,16 +321,22 @@ START_TEST(interaction2d_equals_3d)
             x[i] = d.pos[3 * i], x[n + i] = d.pos[3 * i + 2], v[i] = d.vel[3 * i], v[n + i] = d.vel[3 * i + 2],
             ir[i] = 1.0 / d.rho[i];
         vres_sph_2d P = {x, x + n, v, v + n, d.rho, d.press, ir, d.mass_p, d.type};
-        for (int lam = 0; lam < 2; lam++)
+        for (int v = 0; v < 4; v++)
             for (int gen = 0; gen < 2; gen++) {
+                int lam = v & 1, cubic = v >> 1; /* both viscosities, both kernels */
                 int visc = lam ? VRES_VISC_LAMINAR : VRES_VISC_ARTIFICIAL;
+                int kern = cubic ? VRES_KERNEL_CUBIC : VRES_KERNEL_WENDLAND;
                 vres_sph_general_cpu(n, &g, d.pos, d.vel, d.rho, d.press, d.mass_p, d.type, C, ace3, ar3, vi3, sh3,
-                                     VRES_DDT_FOURTAKAS, 1, visc, 1);
+                                     VRES_DDT_FOURTAKAS, 1, visc, kern, 1);
                 if (gen)
                     vres_sph2d_general_cpu(g.ncells + 1, &g, &P, &C, ace2, ar2, vi2, sh2, VRES_DDT_FOURTAKAS, 1, visc,
-                                           1);
-                else if (lam) vres_sph2d_shift_laminar_dbc_fourtakas_cpu(g.ncells + 1, &g, &P, &C, ace2, ar2, vi2, sh2);
-                else vres_sph2d_shift_dbc_fourtakas_cpu(g.ncells + 1, &g, &P, &C, ace2, ar2, vi2, sh2);
+                                           kern, 1);
+                else {
+                    static const vres_interact2d_fn loops[4] = {
+                        vres_sph2d_shift_dbc_fourtakas_cpu, vres_sph2d_shift_laminar_dbc_fourtakas_cpu,
+                        vres_sph2d_cubic_shift_dbc_fourtakas_cpu, vres_sph2d_cubic_shift_laminar_dbc_fourtakas_cpu};
+                    loops[v](g.ncells + 1, &g, &P, &C, ace2, ar2, vi2, sh2);
+                }
                 double sum = 0;
                 for (size_t i = 0; i < n; i++) {
                     for (int k = 0; k < 3; k++) ck_assert(ace2[3 * i + k] == ace3[3 * i + k]);

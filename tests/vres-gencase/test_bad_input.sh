@@ -43,9 +43,9 @@ sed 's|<cflnumber value="0.2" />|<cflnumber value="0" />|' "$CASE" >"$T/cfl.xml"
 line=$(grep -n '<cflnumber' "$T/cfl.xml" | cut -d: -f1)
 bad "impossible cflnumber, at its element" "cfl\.xml:$line: cflnumber must be in \(0, 1\] \(cflnumber=0\)" "$T/cfl.xml"
 
-sed 's|<parameter key="Kernel" value="2"|<parameter key="Kernel" value="1"|' "$CASE" >"$T/kernel.xml"
-line=$(grep -n 'key="Kernel"' "$T/kernel.xml" | cut -d: -f1)
-bad "unimplemented parameter value" "kernel\.xml:$line: parameter Kernel=1 is not implemented in vres \(it implements Kernel=2" "$T/kernel.xml"
+sed 's|<parameter key="Kernel" value="2"|<parameter key="RigidAlgorithm" value="2"|' "$CASE" >"$T/rigid.xml"
+line=$(grep -n 'key="RigidAlgorithm"' "$T/rigid.xml" | cut -d: -f1)
+bad "unimplemented parameter value" "rigid\.xml:$line: parameter RigidAlgorithm=2 is not implemented in vres \(it implements RigidAlgorithm=0,1" "$T/rigid.xml"
 
 bad "missing file" "nosuch\.xml: cannot open" "$T/nosuch.xml"
 

@@ -3,8 +3,8 @@
 # domains without their domain tree (no region boxes, region boxes in some domains only, no
 # interfaces), a corrupt /Interfaces (a count that is not the datasets' rows, a NaN position, a
 # non-unit normal, domains that are not parent and child), a tracking box without its motion or
-# following no moving body, a restart from a partition store (no snapshot), Verlet with two
-# domains, and --device cuda with two domains. Each gets one message naming the object, exit
+# following no moving body, a restart from a partition store (no snapshot), Verlet or the cubic
+# spline kernel with two domains, and --device cuda with two domains. Each gets one message naming the object, exit
 # 1, and nothing in the run directory. The stores are vres-partition's of cases/hydrostatic_vres2d, edited with h5py (so
 # that vres's own writer, which checks what it writes, is bypassed) or with the parameter
 # setter of tests/lib/test_solver.c.
@@ -102,6 +102,14 @@ then
     refused 1 'StepAlgorithm=1 \(Verlet\) with 2 domains: .*Symplectic scheme only' "Verlet with two domains" \
         "$T/verlet.h5"
 else notok "make the Verlet store with $SETTER (build it: make $VRES_BUILD/tests/test_solver)"; fi
+
+# ---- the cubic spline: the coupling interpolates with the Wendland kernel (vres-partition refuses
+# a Kernel=1 case, so the partition store's parameter is set afterwards)
+if VRES_TEST_SET_IN=$T/parts.h5 VRES_TEST_SET_OUT=$T/cubic.h5 VRES_TEST_SET=Kernel=1 "$SETTER" >/dev/null 2>&1
+then
+    refused 1 'Kernel=1 \(cubic spline\) in a store of 2 domains: variable resolution runs with the Wendland kernel only' \
+        "cubic spline with two domains" "$T/cubic.h5"
+else notok "make the cubic-spline store with $SETTER (build it: make $VRES_BUILD/tests/test_solver)"; fi
 
 # ---- CUDA: the ASan build has none; the normal build finds no GPU here, and with a GPU the CUDA
 # backend does not run the coupling yet. Refused in every case, never a silent CPU run.
