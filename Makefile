@@ -2,6 +2,8 @@
 #   make            build libvres and every tool into bin/ (CUDA parts too where nvcc exists)
 #   make check      build, then run the whole test suite (unit + tool behaviour + ASan readers)
 #                   (B=DIR BINDIR=DIR: another build directory and tool directory, for parallel work)
+#                   (CHECK_JOBS=N: objects built at a time, VRES_JOBS=N: tests run at a time;
+#                   both default to the CPU count)
 #   make bench      throughput table of vres-run (pipelines/bench.sh)
 #   make validate   validation cases at their validation dp (pipelines/validate.mk; long)
 #   make sweep      error-against-run-time sweeps with GNU parallel (pipelines/sweep.mk; long)
