@@ -27,6 +27,8 @@ typedef struct cd_zone {
     int vmode, rmode;    /* imposevelocity and imposerhop modes (kernels/inout.h) */
     double v;            /* fixed velocity (m/s) */
     double zsurf;        /* imposezsurf's zsurf (m), NAN when not given */
+    int vprof;           /* mode 0's profile: 0 uniform <velocity>, 2 <velocity2>, 3 <velocity3> */
+    double pz[3], pv[3]; /* its points: velocity (m/s) at height z (m) */
     int nvt;             /* imposevelocity mode 1: points of <velocitytimes> */
     double *vt;          /* [2 nvt] their time (s) and velocity (m/s) */
 } cd_zone;
@@ -278,10 +280,41 @@ static void read_vtimes(cd_ctx *c, xmlNodePtr iv, cd_zone *z)
     if (!z->nvt) cd_err(c, vt, "<velocitytimes> has no <timevalue>");
 }
 
+/* <imposevelocity mode="0"> iv's one <velocity v> (uniform), <velocity2 v v2 z z2> (linear in
+ * z) or <velocity3 v v2 v3 z z2 z3> (the parabola through the three points) into z. */
+static void read_vprofile(cd_ctx *c, xmlNodePtr iv, cd_zone *z)
+{
+    static const char *const names[3] = {"velocity", "velocity2", "velocity3"};
+    static const char *const va[3] = {"v", "v2", "v3"}, *const za[3] = {"z", "z2", "z3"};
+    if (cd_count(iv, "velocity") + cd_count(iv, "velocity2") + cd_count(iv, "velocity3") != 1) {
+        cd_err(c, iv, "<imposevelocity mode=\"0\"> needs one <velocity v>, <velocity2 v v2 z z2> or <velocity3 v v2 v3 "
+                      "z z2 z3>");
+        return;
+    }
+    for (int k = 0; k < 3; k++) {
+        xmlNodePtr p = cd_child(iv, names[k]);
+        if (!p) continue;
+        const char *attrs[7] = {NULL};
+        for (int i = 0; i <= k; i++) attrs[2 * i] = va[i], attrs[2 * i + 1] = k ? za[i] : NULL;
+        if (cd_check_attrs(c, p, attrs)) return;
+        z->vprof = k ? k + 1 : 0;
+        for (int i = 0; i <= k; i++) {
+            if (cd_num_req(c, p, va[i], &z->pv[i]) != 0 || (k && cd_num_req(c, p, za[i], &z->pz[i]) != 0)) return;
+            for (int j = 0; k && j < i; j++)
+                if (z->pz[j] == z->pz[i]) {
+                    cd_err(c, p, "<%s>: two points at the same height z = %g", names[k], z->pz[i]);
+                    return;
+                }
+        }
+        z->v = z->pv[0];
+    }
+}
+
 /* <imposevelocity>, <imposerhop> and <imposezsurf> of zone element e into z. */
 static void read_impose(cd_ctx *c, xmlNodePtr e, cd_zone *z)
 {
-    static const char *const ma[] = {"mode", NULL}, *const vk[] = {"velocity", NULL}, *const zk[] = {"zsurf", "remove", NULL};
+    static const char *const ma[] = {"mode", NULL}, *const vk[] = {"velocity", "velocity2", "velocity3", NULL},
+                      *const zk[] = {"zsurf", "remove", NULL};
     xmlNodePtr iv = cd_child(e, "imposevelocity"), ir = cd_child(e, "imposerhop"), iz = cd_child(e, "imposezsurf");
     z->vmode = 0, z->rmode = 0, z->v = 0, z->zsurf = NAN;
     if (iv) {
@@ -289,8 +322,7 @@ static void read_impose(cd_ctx *c, xmlNodePtr e, cd_zone *z)
         if (cd_int(c, iv, "mode", 0, &z->vmode) < 0) return;
         if (z->vmode == 0) {
             if (cd_check_children(c, iv, vk)) return;
-            if (!cd_child(iv, "velocity")) cd_err(c, iv, "<imposevelocity mode=\"0\"> needs <velocity v=...>");
-            else cd_child_num(c, iv, "velocity", "v", 0, &z->v);
+            read_vprofile(c, iv, z);
         } else if (z->vmode == 2) cd_check_children(c, iv, NULL);
         else if (z->vmode == 1) read_vtimes(c, iv, z);
         else
@@ -432,6 +464,8 @@ static void put_zone(vres_store *s, const cd_zone *z, int k, long line)
     PUT("velocity", 1, &z->v);
     PUT("zsurf", 1, &z->zsurf);
     PUT("line", 1, &ln);
+    const double prof[7] = {z->vprof, z->pv[0], z->pv[1], z->pv[2], z->pz[0], z->pz[1], z->pz[2]};
+    PUT("vprofile", 7, prof);
     const double nvt = z->nvt;
     PUT("vtimes", 1, &nvt);
     for (int j = 0; j < z->nvt; j++) {

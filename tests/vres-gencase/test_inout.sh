@@ -85,6 +85,15 @@ sed 's|<imposerhop mode="0" />|<imposerhop mode="1" />|' "$CASE" >"$T/hydro.xml"
 line=$(grep -n '<imposerhop mode="1" />' "$T/hydro.xml" | cut -d: -f1)
 bad "hydrostatic density without zsurf" "hydro\.xml:$line: <imposerhop mode=\"1\"> \(hydrostatic\) needs the free surface" "$T/hydro.xml"
 
+# an inlet profile: <velocity3> (parabolic in z) kept as inout_Z1_vprofile (kind, v1..3, z1..3)
+sed 's|<velocity v="1" units_comment="m/s" />|<velocity3 v="0" v2="1.5" v3="0" z="0" z2="0.2" z3="0.4" />|' "$CASE" >"$T/prof.xml"
+expect 0 "an inlet velocity profile (<velocity3>) resolves" "$GEN" -q "$T/prof.xml" -o "$T/prof.h5"
+info=$("$BIN/vres-info" "$T/prof.h5")
+check "its kind and points are kept ($(param inout_Z1_vprofile))" [ "$(param inout_Z1_vprofile)" = "3 0 1.5 0 0 0.2 0.4" ]
+sed 's|<velocity v="1" units_comment="m/s" />|<velocity2 v="0" v2="1.5" z="0.2" z2="0.2" />|' "$CASE" >"$T/prof2.xml"
+line=$(grep -n '<velocity2' "$T/prof2.xml" | cut -d: -f1)
+bad "a profile with two points at one height" "prof2\.xml:$line: <velocity2>: two points at the same height z = 0.2" "$T/prof2.xml"
+
 # the inlet as DualSPHysics' examples write it: the fluid's first column drawn with mkfluid 1
 # and <particles mkfluid="1" direction="right"/>: the face dp/2 in front of that column (x = 0),
 # spanning the column plus dp/2 at each end (0.4 m), as the <line> form gives
