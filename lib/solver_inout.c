@@ -309,13 +309,15 @@ void vres_inout_impose(vres_inout *Z, vres_backend *b)
 }
 
 /* Zone zn's flow direction at time t (s): in 1 when fluid flows in through it (its segments'
- * net inflow is positive). A change after
+ * net inflow is positive). Inflow through an outlet (velocity extrapolated) at the first step,
+ * and a change after
  * the first step is said on stderr (the first INOUT_TURNS_SAID of each zone): fluid flowing
  * back in through an outlet (its velocity extrapolated) is handled, its back creating particles
  * as an inlet's does, but never silently. */
 static void flow_turn(inout_zone *zn, int in, double t)
 {
-    if (zn->inflow >= 0 && in != zn->inflow && zn->nturn++ < INOUT_TURNS_SAID)
+    const int outlet = zn->z.vmode == VRES_INOUT_V_EXTRAP; /* an outlet: inflow through it is reverse flow */
+    if (((zn->inflow >= 0 && in != zn->inflow) || (zn->inflow < 0 && in && outlet)) && zn->nturn++ < INOUT_TURNS_SAID)
         vres_warn("inlet/outlet zone %d (case line %d): from t = %.6g s fluid flows %s through it%s%s", zn->z.id, zn->line,
                   t, in ? "in" : "out", in ? ": its back creates particles from the inflow" : "",
                   zn->nturn == INOUT_TURNS_SAID ? " (further changes of this zone not reported)" : "");
