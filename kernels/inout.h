@@ -16,7 +16,8 @@
  * An inlet particle belongs to the zone whose slab it lies in, from one depth behind the back to
  * one depth in front of the face (zones closer than that are refused by vres-gencase).
  *
- * Imposed state. Velocity: fixed (v n, v the case's value), or extrapolated; density: fixed
+ * Imposed state. Velocity: fixed (v n, v the case's value or its linear or parabolic profile in
+ * z), or extrapolated; density: fixed
  * (rhop0), hydrostatic (Tait's inverse of rho0 |g| (zsurf - z), rhop0 above zsurf) or extrapolated.
  * Extrapolated values are the fluid's, by the first-order corrected kernel of interp_liu.h, at
  * the ghost node mirrored through the face into the fluid, x_g = x - 2 s n (Tafuni et al. 2018),
@@ -62,6 +63,8 @@ typedef struct vres_inout_zone {
     int input;          /* inputtreatment: 0 fluid entering is left alone, 1 converted, 2 removed */
     int vmode;          /* VRES_INOUT_V_* */
     double v;           /* fixed velocity along n (m/s); negative for outflow */
+    int vprof;          /* fixed velocity's profile in z: 0 uniform (v), 2 linear, 3 parabolic */
+    double pz[3], pv[3];/* the profile's points: velocity pv (m/s) at height pz (m) */
     int rmode;          /* VRES_INOUT_RHO_* */
     double rho0;        /* reference density (kg/m^3), the fixed density */
     double zsurf;       /* hydrostatic: height of the free surface (m) */
@@ -91,12 +94,29 @@ VRES_HD static inline int vres_inout_where(const vres_inout_zone *z, const doubl
     return s >= -2.0 * z->depth ? VRES_INOUT_BEHIND : VRES_INOUT_AWAY;
 }
 
+/* The fixed speed (m/s) of zone z at height h (m): v, or its profile's polynomial through its
+ * points (DualSPHysics' <velocity2>, linear, and <velocity3>, parabolic, in z). */
+VRES_HD static inline double vres_inout_speed(const vres_inout_zone *z, double h)
+{
+    if (z->vprof < 2) return z->v;
+    double sum = 0;
+    for (int i = 0; i < z->vprof; i++) {
+        double l = 1;
+        for (int j = 0; j < z->vprof; j++)
+            if (j != i) l *= (h - z->pz[j]) / (z->pz[i] - z->pz[j]);
+        sum += l * z->pv[i];
+    }
+    return sum;
+}
+
 /* The velocity (m/s) and density (kg/m^3) zone z imposes at x where it imposes them (fixed,
  * hydrostatic); extrapolated quantities are left as they are in v and rho. */
 VRES_HD static inline void vres_inout_imposed(const vres_inout_zone *z, const double x[3], double v[3], double *rho)
 {
-    if (z->vmode == VRES_INOUT_V_FIXED)
-        for (int a = 0; a < 3; a++) v[a] = z->v * z->n[a];
+    if (z->vmode == VRES_INOUT_V_FIXED) {
+        const double u = vres_inout_speed(z, x[2]);
+        for (int a = 0; a < 3; a++) v[a] = u * z->n[a];
+    }
     if (z->rmode == VRES_INOUT_RHO_FIXED) *rho = z->rho0;
     else if (z->rmode == VRES_INOUT_RHO_HYDRO) {
         const double p = z->rho0 * z->gz * (z->zsurf - x[2]);

@@ -986,7 +986,7 @@ static xmlNodePtr read_commands(cd_ctx *c, xmlNodePtr cmds)
 /* The main elements of a case, found once. */
 typedef struct cd_parts {
     xmlNodePtr casedef, exec;        /* <casedef>, <execution> */
-    xmlNodePtr constantsdef, mkconfig, geometry, floatings, motion, vres, normals; /* in <casedef> */
+    xmlNodePtr constantsdef, mkconfig, geometry, floatings, motion, vres, normals, initials; /* in <casedef> */
     xmlNodePtr commands, mainlist;   /* in <geometry> */
     xmlNodePtr parameters, special;  /* in <execution> */
 } cd_parts;
@@ -997,7 +997,7 @@ static int find_parts(cd_ctx *c, xmlNodePtr root, cd_parts *p)
 {
     static const char *const case_kids[] = {"casedef", "execution", NULL};
     static const char *const casedef_kids[] = {"constantsdef", "mkconfig", "geometry", "floatings", "motion",
-                                               "normals", "vres", NULL};
+                                               "normals", "vres", "initials", NULL};
     static const char *const exec_kids[] = {"parameters", "special", NULL};
     memset(p, 0, sizeof *p);
     p->casedef = single(c, root, "casedef");
@@ -1021,6 +1021,7 @@ static int find_parts(cd_ctx *c, xmlNodePtr root, cd_parts *p)
     p->motion = single(c, p->casedef, "motion");
     p->vres = single(c, p->casedef, "vres");
     p->normals = single(c, p->casedef, "normals");
+    p->initials = single(c, p->casedef, "initials");
     if (!p->geometry) {
         cd_err(c, p->casedef, "<casedef> has no <geometry>");
         return -1;
@@ -1137,6 +1138,8 @@ static void read_rest(cd_ctx *c, cd_parts *p, vres_store *s)
         make_root(c, p->mainlist ? p->mainlist : p->geometry, s, bbmin, bbmax) == 0) {
         have_root = 1;
         if (!c->root) cd_read_bodies(c, p->floatings, p->motion, s); /* a redrawing keeps the root's */
+        if (p->initials) cd_read_initials(c, p->initials, s);
+        if (p->normals) cd_read_norplanes(c, p->normals, s);
     }
     if (p->vres && !cd_inactive(c, p->vres) && !c->root) cd_read_vres(c, p->vres, s);
     /* a redrawn sub-domain's particles do not span the domain: it stays the root's */

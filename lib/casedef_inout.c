@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "../kernels/inout.h"
 #include "casedef_int.h"
@@ -26,6 +27,8 @@ typedef struct cd_zone {
     int vmode, rmode;    /* imposevelocity and imposerhop modes (kernels/inout.h) */
     double v;            /* fixed velocity (m/s) */
     double zsurf;        /* imposezsurf's zsurf (m), NAN when not given */
+    int vprof;           /* mode 0's profile: 0 uniform <velocity>, 2 <velocity2>, 3 <velocity3> */
+    double pz[3], pv[3]; /* its points: velocity (m/s) at height z (m) */
     int nvt;             /* imposevelocity mode 1: points of <velocitytimes> */
     double *vt;          /* [2 nvt] their time (s) and velocity (m/s) */
 } cd_zone;
@@ -67,13 +70,8 @@ static int read_direction(cd_ctx *c, xmlNodePtr f, cd_zone *z, int dim)
 /* <zone2d><line> into z. 0 or -1. */
 static int read_line(cd_ctx *c, xmlNodePtr zn, cd_zone *z)
 {
-    static const char *const kids[] = {"line", NULL}, *const lk[] = {"point", "point2", "direction", NULL};
-    if (cd_check_children(c, zn, kids)) return -1;
+    static const char *const lk[] = {"point", "point2", "direction", NULL};
     xmlNodePtr l = cd_child(zn, "line");
-    if (!l) {
-        cd_err(c, zn, "<zone2d> has no <line> (zones from <particles> are not implemented yet)");
-        return -1;
-    }
     if (cd_check_children(c, l, lk)) return -1;
     double a[3], b[3], d[3];
     if (cd_child_vec3(c, l, "point", NULL, a) != 0 || cd_child_vec3(c, l, "point2", NULL, b) != 0) {
@@ -91,16 +89,132 @@ static int read_line(cd_ctx *c, xmlNodePtr zn, cd_zone *z)
     return read_direction(c, l, z, 2);
 }
 
-/* <zone3d><box> (a rectangle: one size component zero) into z. 0 or -1. */
-static int read_box(cd_ctx *c, xmlNodePtr zn, cd_zone *z)
+/* The unit vector of a <particles direction="..."> word into d: 0 for top, bottom, right,
+ * left, back, front (DualSPHysics' +z, -z, +x, -x, +y, -y), 1 for custom, -1 otherwise. */
+static int direction_word(const char *w, double d[3])
 {
-    static const char *const kids[] = {"box", NULL}, *const bk[] = {"point", "size", "direction", NULL};
-    if (cd_check_children(c, zn, kids)) return -1;
-    xmlNodePtr bx = cd_child(zn, "box");
-    if (!bx) {
-        cd_err(c, zn, "<zone3d> has no <box> (<circle> and zones from <particles> are not implemented yet)");
+    static const struct { const char *w; int axis; double sign; } words[] = {
+        {"top", 2, 1}, {"bottom", 2, -1}, {"right", 0, 1}, {"left", 0, -1}, {"back", 1, 1}, {"front", 1, -1}};
+    d[0] = d[1] = d[2] = 0;
+    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
+        if (!strcasecmp(w, words[i].w)) {
+            d[words[i].axis] = words[i].sign;
+            return 0;
+        }
+    return strcasecmp(w, "custom") ? -1 : 1;
+}
+
+/* <particles mkfluid direction>'s direction (a word, or custom with a <direction> child) into
+ * z->n, and tangents of the face normal to it into z->t1, z->t2. 0 or -1. */
+static int particles_direction(cd_ctx *c, xmlNodePtr e, cd_zone *z, int dim)
+{
+    char *w = cd_attr(e, "direction");
+    double d[3];
+    int kind = w ? direction_word(w, d) : -1;
+    if (kind < 0)
+        cd_err(c, e, "<particles> needs direction=\"top|bottom|left|right|front|back|custom\" (the direction of "
+                     "inflow, into the fluid)%s%s%s", w ? ", not \"" : "", w ? w : "", w ? "\"" : "");
+    else if (kind == 1 && cd_child_vec3(c, e, "direction", NULL, d) != 0)
+        cd_err(c, e, "<particles direction=\"custom\"> needs a <direction x=... z=.../> element");
+    else if (kind == 0 && cd_child(e, "direction"))
+        cd_err(c, cd_child(e, "direction"), "<direction> is for direction=\"custom\" only (the word says it: %s)", w);
+    free(w);
+    if (kind < 0 || (kind == 1 && !cd_child(e, "direction")) || (kind == 0 && cd_child(e, "direction"))) return -1;
+    if (dim == 2 && d[1] != 0) {
+        cd_err(c, e, "<particles>: a direction along y (front, back) has no meaning in a 2D case");
         return -1;
     }
+    if (unit(d, z->n) != 0) {
+        cd_err(c, e, "<particles>: the direction is zero");
+        return -1;
+    }
+    const double *n = z->n;
+    if (dim == 2) { /* the face's line in the x-z plane */
+        z->t1[0] = 0.0 - n[2], z->t1[1] = 0, z->t1[2] = n[0] + 0.0;
+        z->t2[0] = z->t2[1] = z->t2[2] = 0;
+        return 0;
+    }
+    int a = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
+    double e0[3] = {0, 0, 0}, t[3];
+    e0[a] = 1; /* the axis least along n */
+    t[0] = n[1] * e0[2] - n[2] * e0[1], t[1] = n[2] * e0[0] - n[0] * e0[2], t[2] = n[0] * e0[1] - n[1] * e0[0];
+    unit(t, z->t1);
+    z->t2[0] = n[1] * z->t1[2] - n[2] * z->t1[1], z->t2[1] = n[2] * z->t1[0] - n[0] * z->t1[2];
+    z->t2[2] = n[0] * z->t1[1] - n[1] * z->t1[0];
+    return 0;
+}
+
+/* <zone2d|zone3d><particles mkfluid direction> into z: the fluid particles of mk mkfluid (of
+ * the case drawn whole: the root's when this is a redrawing) are the zone's first layer, as in
+ * DualSPHysics (JSphInOutPoints): they must lie in one line (2D) or plane (3D) normal to the
+ * direction, the face lies dp/2 in front of them and spans their extent plus dp/2 on each
+ * side, the other layers go behind them. 0 or -1. */
+static int read_particles(cd_ctx *c, xmlNodePtr zn, cd_zone *z, const vres_store *s)
+{
+    static const char *const attrs[] = {"mkfluid", "direction", NULL}, *const kids[] = {"direction", NULL};
+    xmlNodePtr e = cd_child(zn, "particles");
+    double mkv;
+    cd_check_attrs(c, e, attrs);
+    if (cd_check_children(c, e, kids) || cd_num_req(c, e, "mkfluid", &mkv) != 0) return -1;
+    if (mkv != floor(mkv) || mkv < 0) {
+        cd_err(c, e, "mkfluid of <particles> must be a non-negative integer (got %g)", mkv);
+        return -1;
+    }
+    if (particles_direction(c, e, z, c->dim) != 0) return -1;
+    const vres_store *src = c->root ? c->root : s;
+    const vres_domain *d = src->ndomains ? &src->dom[0] : NULL;
+    const double dp = c->root ? vres_params_get(&c->root->params, "dp", c->dp) : c->dp;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    size_t np = 0;
+    for (size_t i = 0; d && i < d->n; i++) {
+        if (!vres_type_is_fluid(d->type[i]) || d->mk[i] != (int32_t)mkv) continue;
+        const double *x = &d->pos[3 * i], *b[3] = {z->n, z->t1, z->t2};
+        for (int k = 0; k < 3; k++) {
+            const double u = x[0] * b[k][0] + (c->dim == 2 ? 0 : x[1] * b[k][1]) + x[2] * b[k][2];
+            lo[k] = fmin(lo[k], u), hi[k] = fmax(hi[k], u);
+        }
+        np++;
+    }
+    if (!np) {
+        if (d) cd_err(c, e, "<particles mkfluid=\"%g\">: the case draws no fluid particle of mkfluid %g", mkv, mkv);
+        return -1; /* no particles at all: the drawing's own error was reported */
+    }
+    if (hi[0] - lo[0] > 0.01 * dp) {
+        cd_err(c, e, "<particles mkfluid=\"%g\">: its %zu particles spread %g m along the direction: they must lie in "
+                     "one %s normal to it (one layer of particles)", mkv, np, hi[0] - lo[0], c->dim == 2 ? "line" : "plane");
+        return -1;
+    }
+    for (int a = 0; a < 3; a++)
+        z->p0[a] = (hi[0] + 0.5 * dp) * z->n[a] + (lo[1] - 0.5 * dp) * z->t1[a] + (lo[2] - 0.5 * dp) * z->t2[a];
+    if (c->dim == 2) z->p0[1] = 0;
+    z->len1 = hi[1] - lo[1] + dp;
+    z->len2 = c->dim == 2 ? 0 : hi[2] - lo[2] + dp;
+    return 0;
+}
+
+/* <zone2d>: a <line> or <particles> into z. 0 or -1. */
+static int read_zone2d(cd_ctx *c, xmlNodePtr zn, cd_zone *z, const vres_store *s)
+{
+    static const char *const kids[] = {"line", "particles", NULL};
+    if (cd_check_children(c, zn, kids)) return -1;
+    if (cd_count(zn, "line") + cd_count(zn, "particles") != 1) {
+        cd_err(c, zn, "<zone2d> needs one <line> or one <particles>");
+        return -1;
+    }
+    return cd_child(zn, "line") ? read_line(c, zn, z) : read_particles(c, zn, z, s);
+}
+
+/* <zone3d>: a <box> (a rectangle: one size component zero) or <particles> into z. 0 or -1. */
+static int read_box(cd_ctx *c, xmlNodePtr zn, cd_zone *z, const vres_store *s)
+{
+    static const char *const kids[] = {"box", "particles", NULL}, *const bk[] = {"point", "size", "direction", NULL};
+    if (cd_check_children(c, zn, kids)) return -1;
+    if (cd_count(zn, "box") + cd_count(zn, "particles") != 1) {
+        cd_err(c, zn, "<zone3d> needs one <box> or one <particles> (<circle> is not implemented yet)");
+        return -1;
+    }
+    if (cd_child(zn, "particles")) return read_particles(c, zn, z, s);
+    xmlNodePtr bx = cd_child(zn, "box");
     if (cd_check_children(c, bx, bk)) return -1;
     double p[3], sz[3];
     if (cd_child_vec3(c, bx, "point", NULL, p) != 0 || cd_child_vec3(c, bx, "size", NULL, sz) != 0) {
@@ -166,10 +280,41 @@ static void read_vtimes(cd_ctx *c, xmlNodePtr iv, cd_zone *z)
     if (!z->nvt) cd_err(c, vt, "<velocitytimes> has no <timevalue>");
 }
 
+/* <imposevelocity mode="0"> iv's one <velocity v> (uniform), <velocity2 v v2 z z2> (linear in
+ * z) or <velocity3 v v2 v3 z z2 z3> (the parabola through the three points) into z. */
+static void read_vprofile(cd_ctx *c, xmlNodePtr iv, cd_zone *z)
+{
+    static const char *const names[3] = {"velocity", "velocity2", "velocity3"};
+    static const char *const va[3] = {"v", "v2", "v3"}, *const za[3] = {"z", "z2", "z3"};
+    if (cd_count(iv, "velocity") + cd_count(iv, "velocity2") + cd_count(iv, "velocity3") != 1) {
+        cd_err(c, iv, "<imposevelocity mode=\"0\"> needs one <velocity v>, <velocity2 v v2 z z2> or <velocity3 v v2 v3 "
+                      "z z2 z3>");
+        return;
+    }
+    for (int k = 0; k < 3; k++) {
+        xmlNodePtr p = cd_child(iv, names[k]);
+        if (!p) continue;
+        const char *attrs[7] = {NULL};
+        for (int i = 0; i <= k; i++) attrs[2 * i] = va[i], attrs[2 * i + 1] = k ? za[i] : NULL;
+        if (cd_check_attrs(c, p, attrs)) return;
+        z->vprof = k ? k + 1 : 0;
+        for (int i = 0; i <= k; i++) {
+            if (cd_num_req(c, p, va[i], &z->pv[i]) != 0 || (k && cd_num_req(c, p, za[i], &z->pz[i]) != 0)) return;
+            for (int j = 0; k && j < i; j++)
+                if (z->pz[j] == z->pz[i]) {
+                    cd_err(c, p, "<%s>: two points at the same height z = %g", names[k], z->pz[i]);
+                    return;
+                }
+        }
+        z->v = z->pv[0];
+    }
+}
+
 /* <imposevelocity>, <imposerhop> and <imposezsurf> of zone element e into z. */
 static void read_impose(cd_ctx *c, xmlNodePtr e, cd_zone *z)
 {
-    static const char *const ma[] = {"mode", NULL}, *const vk[] = {"velocity", NULL}, *const zk[] = {"zsurf", "remove", NULL};
+    static const char *const ma[] = {"mode", NULL}, *const vk[] = {"velocity", "velocity2", "velocity3", NULL},
+                      *const zk[] = {"zsurf", "remove", NULL};
     xmlNodePtr iv = cd_child(e, "imposevelocity"), ir = cd_child(e, "imposerhop"), iz = cd_child(e, "imposezsurf");
     z->vmode = 0, z->rmode = 0, z->v = 0, z->zsurf = NAN;
     if (iv) {
@@ -177,8 +322,7 @@ static void read_impose(cd_ctx *c, xmlNodePtr e, cd_zone *z)
         if (cd_int(c, iv, "mode", 0, &z->vmode) < 0) return;
         if (z->vmode == 0) {
             if (cd_check_children(c, iv, vk)) return;
-            if (!cd_child(iv, "velocity")) cd_err(c, iv, "<imposevelocity mode=\"0\"> needs <velocity v=...>");
-            else cd_child_num(c, iv, "velocity", "v", 0, &z->v);
+            read_vprofile(c, iv, z);
         } else if (z->vmode == 2) cd_check_children(c, iv, NULL);
         else if (z->vmode == 1) read_vtimes(c, iv, z);
         else
@@ -210,8 +354,9 @@ static void read_impose(cd_ctx *c, xmlNodePtr e, cd_zone *z)
                       "value=.../></imposezsurf>");
 }
 
-/* One <inoutzone> into z: 0, or -1 after an error. */
-static int read_zone(cd_ctx *c, xmlNodePtr e, cd_zone *z)
+/* One <inoutzone> into z (s: the drawn particles, for zones from <particles>): 0, or -1 after an
+ * error. */
+static int read_zone(cd_ctx *c, xmlNodePtr e, cd_zone *z, const vres_store *s)
 {
     static const char *const attrs[] = {"active", NULL};
     static const char *const kids[] = {"refilling", "inputtreatment", "layers", "zone2d", "zone3d", "imposevelocity",
@@ -231,8 +376,8 @@ static int read_zone(cd_ctx *c, xmlNodePtr e, cd_zone *z)
     if (child_int(c, e, "layers", "value", 4, &z->layers) == 0 && (z->layers < 1 || z->layers > 100))
         cd_err(c, cd_child(e, "layers"), "<layers value=\"%d\"> must lie in 1..100", z->layers);
     xmlNodePtr z2 = cd_child(e, "zone2d"), z3 = cd_child(e, "zone3d");
-    if (c->dim == 2 && z2) read_line(c, z2, z);
-    else if (c->dim == 3 && z3) read_box(c, z3, z);
+    if (c->dim == 2 && z2) read_zone2d(c, z2, z, s);
+    else if (c->dim == 3 && z3) read_box(c, z3, z, s);
     else cd_err(c, e, "<inoutzone> of a %dD case needs <zone%dd>", c->dim, c->dim);
     read_impose(c, e, z);
     return c->nerr > nerr ? -1 : 0;
@@ -319,6 +464,8 @@ static void put_zone(vres_store *s, const cd_zone *z, int k, long line)
     PUT("velocity", 1, &z->v);
     PUT("zsurf", 1, &z->zsurf);
     PUT("line", 1, &ln);
+    const double prof[7] = {z->vprof, z->pv[0], z->pv[1], z->pv[2], z->pz[0], z->pz[1], z->pz[2]};
+    PUT("vprofile", 7, prof);
     const double nvt = z->nvt;
     PUT("vtimes", 1, &nvt);
     for (int j = 0; j < z->nvt; j++) {
@@ -354,7 +501,7 @@ void cd_read_inout(cd_ctx *c, xmlNodePtr inout, vres_store *s)
     int k = 0, bad = 0;
     for (xmlNodePtr e = inout->children; e; e = e->next) {
         if (!cd_is_elem(e) || strcmp(cd_name(e), "inoutzone") || cd_inactive(c, e)) continue;
-        if (read_zone(c, e, &zs[k]) != 0) bad = 1;
+        if (read_zone(c, e, &zs[k], s) != 0) bad = 1;
         else if (c->have_def) check_zone(c, s, zs, k);
         k++;
     }

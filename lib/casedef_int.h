@@ -198,6 +198,11 @@ void cd_read_special(cd_ctx *c, xmlNodePtr special, vres_store *s);
 /* Resolve <inout>'s zones into s's parameters inout_Z<k>_* (casedef_inout.c), refusing what
  * vres-run does not run by name and line; s holds the drawn particles and the domain. */
 void cd_read_inout(cd_ctx *c, xmlNodePtr inout, vres_store *s);
+/* <casedef><initials>: the initial velocity of s's drawn fluid by mkfluid (casedef_initials.c). */
+void cd_read_initials(cd_ctx *c, xmlNodePtr initials, vres_store *s);
+/* <normals>' <norplane>s applied to s's drawn walls (casedef_norplane.c); with no geometry in
+ * <normals>, the walls no plane names lose the drawing's normals, as in GenCase. */
+void cd_read_norplanes(cd_ctx *c, xmlNodePtr normals, vres_store *s);
 /* Note which mkbounds are floating or moving (before drawing, so walls get their type). */
 void cd_scan_bodies(cd_ctx *c, xmlNodePtr floatings, xmlNodePtr motion);
 /* Read <floatings> and <motion> into s->body once the root domain's particles exist: mass,

@@ -88,7 +88,7 @@ static void shapeout(cd_ctx *c, xmlNodePtr node)
     char *file = cd_attr(node, "file");
     int reset = 1;
     cd_bool(c, node, "reset", 1, &reset);
-    if (!file || !*file) {
+    if (!file) { /* file="" is GenCase's way of writing the shapes under the case's own name */
         cd_err(c, node, "<shapeout> needs the attribute 'file'");
     } else if (c->nsets >= CD_MAX_SETS) {
         cd_err(c, node, "more than %d <shapeout> commands", CD_MAX_SETS);
@@ -207,17 +207,19 @@ static int measure_set(cd_ctx *c, int k)
 void cd_read_normals(cd_ctx *c, xmlNodePtr normals)
 {
     static const char *const attrs[] = {"active", NULL};
-    static const char *const kids[] = {"norgeometry", "geometryfile", "distanceh", "maxsizeh", "svshapes", NULL};
+    static const char *const kids[] = {"norgeometry", "geometryfile", "distanceh", "maxsizeh", "svshapes", "norplane", NULL};
     static const char *const gkids[] = {"geometryfile", "distanceh", "maxsizeh", "svshapes", NULL};
     cd_check_attrs(c, normals, attrs);
     if (cd_inactive(c, normals)) return;
     int nbad = 0;
     for (xmlNodePtr n = normals->children; n; n = n->next)
-        if (cd_is_elem(n) && !strncmp(cd_name(n), "nor", 3) && strcmp(cd_name(n), "norgeometry"))
-            cd_err(c, n, "element <%s> of <normals> is not supported: vres takes wall normals from the drawn shapes "
-                         "or from the shapes of <norgeometry>", cd_name(n)), nbad++;
+        if (cd_is_elem(n) && !strncmp(cd_name(n), "nor", 3) && strcmp(cd_name(n), "norgeometry") && strcmp(cd_name(n), "norplane"))
+            cd_err(c, n, "element <%s> of <normals> is not supported: vres takes wall normals from the drawn shapes, "
+                         "from the shapes of <norgeometry> or from <norplane>", cd_name(n)), nbad++;
     if (nbad) return; /* one message for it: not again as an unknown child, nor the geometry it lacks */
     cd_check_children(c, normals, kids);
+    if (cd_child(normals, "norplane") && !cd_child(normals, "norgeometry") && !cd_child(normals, "geometryfile"))
+        return; /* planes only: applied to the particles (casedef_norplane.c) */
     xmlNodePtr g = cd_child(normals, "norgeometry");
     if (g) cd_check_children(c, g, gkids);
     else g = normals; /* GenCase's older form: geometryfile and distanceh right in <normals> */

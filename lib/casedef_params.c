@@ -52,7 +52,7 @@ static const pdef PDEFS[] = {
     {"SlipMode", PK_IMPL, 0, 0, 1, "1,2,3", NULL, 0, 0, 0, "", "mDBC slip mode 1:DBC vel=0, 2:no-slip, 3:free slip"},
     {"NoPenetration", PK_NOTIMPL, 0, 0, 0, "0,1", NULL, 0, 0, 0, "", "mDBC no-penetration (SlipMode 2 and 3 only)"},
     {"StepAlgorithm", PK_IMPL, 0, 0, 1, "1,2", NULL, 0, 0, 0, "", "time integration 1:Verlet, 2:Symplectic"},
-    {"VerletSteps", PK_IMPL, 0, 0, 40, NULL, NULL, 1, NOLIM, 0, "", "Verlet: steps between Euler steps"},
+    {"VerletSteps", PK_IMPL, 0, 0, 40, NULL, NULL, 0, NOLIM, 0, "", "Verlet: steps between Euler steps (vres-run: at least 1 with Verlet)"},
     {"Kernel", PK_IMPL, 0, 0, 2, "1,2", NULL, 0, 0, 0, "", "kernel 1:cubic spline, 2:Wendland"},
     {"ViscoTreatment", PK_IMPL, 0, 0, 1, "1,2,3", NULL, 0, 0, 0, "", "viscosity 1:artificial, 2:laminar+SPS, 3:laminar"},
     {"Visco", PK_IMPL, 0, 1, 0, NULL, NULL, 0, NOLIM, 0, "", "viscosity: alpha (artificial) or nu in m^2/s (laminar)"},

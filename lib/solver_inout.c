@@ -33,6 +33,9 @@ typedef struct inout_zone {
     int nvt;                /* imposevelocity mode 1: points of the velocity's time series (0: none) */
     double *vt;             /* [2 nvt] their time (s) and velocity (m/s) */
     vres_couple_ledger L;   /* what the zone did to particles since the run began */
+    int inflow;             /* 1 while fluid flows in through the zone (its segments' net inflow is
+                               positive), 0 while it does not, -1 before the first step */
+    int nturn;              /* changes of that direction reported on stderr */
 } inout_zone;
 
 struct vres_inout {
@@ -43,7 +46,11 @@ struct vres_inout {
     double m;               /* its particle mass (kg) */
     int32_t mk;             /* mk of new inlet particles (the domain's fluid mk) */
     vres_liu_opts o;        /* the extrapolation's settings: the domain's kernel, first order */
+    double t;               /* the time of the zones' state (s, vres_inout_time) */
 };
+
+/* Changes of a zone's flow direction reported on stderr before they are only counted. */
+#define INOUT_TURNS_SAID 5
 
 int vres_inout_count(const vres_store *s)
 {
@@ -83,6 +90,13 @@ static int zone_read(const vres_store *s, const run_cfg *c, int k, inout_zone *z
     zn->layers = (int)opt[0];
     z->input = (int)opt[1], z->vmode = (int)opt[3], z->rmode = (int)opt[4];
     z->v = v[0], z->zsurf = zs[0];
+    char pname[64]; /* the velocity's profile: absent in stores written before profiles (uniform) */
+    snprintf(pname, sizeof pname, "inout_Z%d_vprofile", k);
+    const vres_param *pf = vres_params_find(&s->params, pname);
+    if (pf && pf->n == 7 && (pf->v[0] == 2 || pf->v[0] == 3)) {
+        z->vprof = (int)pf->v[0];
+        for (int i = 0; i < 3; i++) z->pv[i] = pf->v[1 + i], z->pz[i] = pf->v[4 + i];
+    }
     z->rho0 = c->rho0, z->B = c->B, z->gamma = c->gamma;
     z->gz = sqrt(c->g[0] * c->g[0] + c->g[1] * c->g[1] + c->g[2] * c->g[2]);
     zn->line = (int)line[0];
@@ -193,6 +207,7 @@ vres_inout *vres_inout_open(const vres_store *s, const run_cfg *c, int restarted
             return NULL;
         }
         zone_segments(zn, Z->dp);
+        zn->inflow = -1;
         if (restarted && zone_resume(s, zn) != 0) {
             Z->nz = k + 1;
             vres_inout_close(Z);
@@ -217,6 +232,7 @@ void vres_inout_close(vres_inout *Z)
 
 void vres_inout_time(vres_inout *Z, double t)
 {
+    Z->t = t;
     for (int k = 0; k < Z->nz; k++) {
         inout_zone *zn = &Z->zone[k];
         if (!zn->nvt) continue;
@@ -292,19 +308,38 @@ void vres_inout_impose(vres_inout *Z, vres_backend *b)
     for (int k = 0; k < Z->nz; k++) b->inout_impose(b, &Z->zone[k].z, &D);
 }
 
+/* Zone zn's flow direction at time t (s): in 1 when fluid flows in through it (its segments'
+ * net inflow is positive). Inflow through an outlet (velocity extrapolated) at the first step,
+ * and a change after
+ * the first step is said on stderr (the first INOUT_TURNS_SAID of each zone): fluid flowing
+ * back in through an outlet (its velocity extrapolated) is handled, its back creating particles
+ * as an inlet's does, but never silently. */
+static void flow_turn(inout_zone *zn, int in, double t)
+{
+    const int outlet = zn->z.vmode == VRES_INOUT_V_EXTRAP; /* an outlet: inflow through it is reverse flow */
+    if (((zn->inflow >= 0 && in != zn->inflow) || (zn->inflow < 0 && in && outlet)) && zn->nturn++ < INOUT_TURNS_SAID)
+        vres_warn("inlet/outlet zone %d (case line %d): from t = %.6g s fluid flows %s through it%s%s", zn->z.id, zn->line,
+                  t, in ? "in" : "out", in ? ": its back creates particles from the inflow" : "",
+                  zn->nturn == INOUT_TURNS_SAID ? " (further changes of this zone not reported)" : "");
+    zn->inflow = in;
+}
+
 int vres_inout_exchange(vres_inout *Z, vres_backend *b, double dt, uint64_t *next_id)
 {
     vres_donor D = self_donor(Z, b);
     static const double still[3] = {0, 0, 0};
     for (int k = 0; k < Z->nz; k++) { /* the segments see the new time's fluid, before any type change */
         inout_zone *zn = &Z->zone[k];
+        double net = 0; /* the zone's net inflow this step (kg) */
         for (size_t j = 0; j < zn->nseg; j++) {
             vres_inout_state_at(&zn->z, &D, &zn->pos[3 * j], &zn->vel[3 * j], &zn->rho[j]);
             const double v[3] = {zn->vel[3 * j], zn->vel[3 * j + 1], zn->vel[3 * j + 2]};
-            zn->mass[j] = vres_couple_accumulate(zn->mass[j],
-                                                 vres_couple_dm(zn->rho[j], v, still, &zn->normal[3 * j], zn->area[j], dt));
+            const double dm = vres_couple_dm(zn->rho[j], v, still, &zn->normal[3 * j], zn->area[j], dt);
+            zn->mass[j] = vres_couple_accumulate(zn->mass[j], dm);
             zn->state[j] = VRES_SEG_FLUX;
+            net += dm;
         }
+        flow_turn(zn, net > 0, Z->t);
     }
     if (classify(Z, b, 0) != 0) return -1;
     for (int k = 0; k < Z->nz; k++) {

@@ -55,7 +55,8 @@
 #               (the same flow, seen by both domains), up to what the bands and segments hold
 #               in transit. A runaway violates (a) within a few hundred steps (one particle per
 #               segment per step) and (b), (c) soon after.
-# A single-domain run is judged exactly as above (the fluid mass to 1e-12). Its error line is
+# A single-domain run is judged exactly as above (the fluid mass to 1e-12; with inlet/outlet
+# zones, which exchange fluid, their books and fill instead: zones_books). Its error line is
 # the largest speed over c0 (tolerance 1: the bound above), a quantity every run changes; the
 # fluid mass of fixed-mass particles cannot change unless one is lost, so it is a condition
 # (fluid_mass_change), not the error. Also reported: the largest density deviation
@@ -265,6 +266,37 @@ coupled_verdict() {
 # max_speed_over_c0, nonfinite_values, tolerance and verdict. Exits 0 when the outcome is
 # acceptable, 1 otherwise. A coupled run (several domains) ends in coupled_verdict: the
 # ledger's drift, closure and runaway tests instead of the fluid mass.
+# zones_books RUNDIR FIRST: a single-domain run with inlet/outlet zones (the store's parameter
+# inout_zones) exchanges fluid through them, so its fluid mass is not the first snapshot's.
+# Instead its books must close and its zones must not pile particles up: |total_mass_drift| of
+# every ledger.tsv line (the fluid's mass against its start plus what the zones gave it) at
+# most 1e-9, and each zone's inlet particles (ledger.tsv's n_buffer on its Z<k> lines) at most
+# 1.5 times its capacity, layers times segments (one per dp of its face): the number density of
+# fixed-mass particles is rho/m, at most 1.3 times the lattice's before RhopOutMax stops the
+# run, and 1.5 leaves room for disorder. Reports zones_ledger_drift and zones_fill (the largest
+# count over capacity). 0, or 1 after saying why.
+zones_books() {
+    local d=$1 first=$2 nz k dp cap caps="" drift fill
+    nz=$(param inout_zones "$first")
+    dp=$(attr /Domains/D0/dp "$first")
+    for ((k = 1; k <= nz; k++)); do
+        cap=$(awk -v l="$(param "inout_Z${k}_options" "$first")" -v e="$(attrv "/Parameters/inout_Z${k}_extent" "$first" | paste -s -d ' ')" \
+            -v dp="$dp" -v dim="$(attr /dim "$first")" 'BEGIN {split(e, x, " "); n = int(x[1] / dp + 0.5); if (n < 1) n = 1
+                if (dim == 3) {m = int(x[2] / dp + 0.5); n *= m < 1 ? 1 : m}; print l * n}')
+        caps="$caps Z$k=$cap"
+    done
+    drift=$(awk -F'\t' '!/^#/ {v = $20; if (v < 0) v = -v; if (v > D) D = v; n++} END {if (n) printf "%.3g\n", D; else print "none"}' "$d/ledger.tsv" 2>/dev/null)
+    fill=$(awk -F'\t' -v caps="$caps" 'BEGIN {n = split(caps, c, " "); for (i = 1; i <= n; i++) {split(c[i], kv, "="); cap[kv[1]] = kv[2]}}
+        !/^#/ && ($3 in cap) {f = $6 / cap[$3]; if (f > F) F = f; m++} END {if (m) printf "%.3g\n", F; else print "none"}' "$d/ledger.tsv" 2>/dev/null)
+    report zones_ledger_drift "${drift:-none}"
+    report zones_fill "${fill:-none}"
+    [ "${drift:-none}" != none ] && [ "${fill:-none}" != none ] ||
+        { note "ledger.tsv has no zone lines: the zones' books cannot be read"; return 1; }
+    awk -v d="$drift" 'BEGIN {exit !(d <= 1e-9)}' || { note "the zones' books do not close: drift $drift"; return 1; }
+    awk -v f="$fill" 'BEGIN {exit !(f <= 1.5)}' || { note "a zone holds $fill times its capacity: particles pile up"; return 1; }
+    return 0
+}
+
 stability_verdict() {
     local d=$1 status=$2 log=$3 first last m0 m1 c0 vmax bad diag ok=1 nd
     first=$(snapshots "$d" | head -1)
@@ -316,11 +348,15 @@ stability_verdict() {
         bad=$(nonfinite "$last")
         report nonfinite_values "$bad"
         [ "$bad" -eq 0 ] || { note "$last: $bad values are not finite"; ok=0; }
-        m1=$(fluid_mass "$last")
-        # no particle may be lost: fixed masses make any other change a lost or excluded particle
-        report fluid_mass_change "$(awk -v a="$m0" -v b="$m1" 'BEGIN {d = (b - a) / a; printf "%.3g", d < 0 ? -d : d}')"
-        awk -v a="$m0" -v b="$m1" 'BEGIN {d = (b - a) / a; exit !(d < 1e-12 && d > -1e-12)}' ||
-            { note "the fluid mass changed from $m0 to $m1 kg: particles were lost"; ok=0; }
+        if [ "$(param inout_zones "$first" 2>/dev/null || echo 0)" -gt 0 ] 2>/dev/null; then
+            zones_books "$d" "$first" || ok=0
+        else
+            m1=$(fluid_mass "$last")
+            # no particle may be lost: fixed masses make any other change a lost or excluded particle
+            report fluid_mass_change "$(awk -v a="$m0" -v b="$m1" 'BEGIN {d = (b - a) / a; printf "%.3g", d < 0 ? -d : d}')"
+            awk -v a="$m0" -v b="$m1" 'BEGIN {d = (b - a) / a; exit !(d < 1e-12 && d > -1e-12)}' ||
+                { note "the fluid mass changed from $m0 to $m1 kg: particles were lost"; ok=0; }
+        fi
     fi
     # the error: the largest speed against its bound, the speed of sound (a quantity every run
     # changes, where the fluid mass cannot change without a particle lost)

@@ -37,7 +37,8 @@ VALIDATE ?= dambreak_front2d:0.02 dambreak_front2d:0.01 hydrostatic_profile2d:0.
             floating_box2d: floating_heavy2d: \
             stiff_rest2d: stiff_impact2d: stiff_lowvisc2d: stiff_tinydp2d: stiff_float_light2d: \
             stiff_vres_front2d: stiff_vres_dpratio4_2d: stiff_vres_nested3_2d: stiff_vres_corner2d: \
-            stiff_vres_siblings2d: tank_vres3d: dambreak_vres3d: channel_inout2d:
+            stiff_vres_siblings2d: tank_vres3d: dambreak_vres3d: channel_inout2d: poiseuille_inout2d: \
+            stiff_inlet_step2d: stiff_inlet_reverse2d: stiff_inout_drain2d:
 
 case_of = $(word 1,$(subst :, ,$(1)))
 dp_of   = $(word 2,$(subst :, ,$(1)))

@@ -586,17 +586,21 @@ START_TEST(bodies)
 }
 END_TEST
 
-/* <normals>, <initials> and comments: normals refused unless inactive; '_' elements skipped. */
+/* <normals>, <initials> and comments: normal commands other than norgeometry and norplane
+ * refused unless inactive, a norplane without its mk, initials' forms vres does not read; '_'
+ * elements skipped. */
 START_TEST(skips_and_refusals)
 {
     vres_store *s = rd(mkcase("<!-- comment --><_rhop0 value=\"-5\"/>", DEF2D, "<_drawsphere/>" WATER,
                               "<normals active=\"false\"><norplane/></normals>", ""));
     ck_assert_ptr_nonnull(s);
     vres_store_free(s);
-    REFUSED(mkcase("", DEF2D, WATER, "<normals>\n<norplane/></normals>", ""),
-            "t.xml:3: element <norplane> of <normals> is not supported", NULL);
-    ck_assert_int_eq(count_lines(refused_opts(mkcase("", DEF2D, WATER, "<normals>\n<norplane/></normals>", ""), NULL)), 1);
-    REFUSED(mkcase("", DEF2D, WATER, "\n<initials/>", ""), "t.xml:3: element <initials> is not supported in <casedef>", NULL);
+    REFUSED(mkcase("", DEF2D, WATER, "<normals>\n<norsphere/></normals>", ""),
+            "t.xml:3: element <norsphere> of <normals> is not supported", NULL);
+    ck_assert_int_eq(count_lines(refused_opts(mkcase("", DEF2D, WATER, "<normals>\n<norsphere/></normals>", ""), NULL)), 1);
+    REFUSED(mkcase("", DEF2D, WATER, "<normals>\n<norplane/></normals>", ""), "t.xml:3: <norplane> needs mkbound=", NULL);
+    REFUSED(mkcase("", DEF2D, WATER, "<initials>\n<velwave/></initials>", ""),
+            "t.xml:3: element <velwave> is not supported in <initials>", NULL);
 }
 END_TEST
 

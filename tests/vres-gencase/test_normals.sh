@@ -45,11 +45,17 @@ line=$(grep -n "walls.stl" "$T/ext.xml" | cut -d: -f1)
 expect_err 1 "ext.xml:$line: .*external geometry files are not supported" "an external geometry file is refused" \
     "$ASAN/vres-gencase" "$T/ext.xml" -o "$T/x.h5"
 check "nothing written" [ ! -e "$T/x.h5" ]
+sed -e 's|<norgeometry>|<norsphere mkbound="0"><radius v="0.1"/></norsphere><norgeometry>|' "$CASE" >"$T/sphere.xml"
+line=$(grep -n "<norsphere" "$T/sphere.xml" | cut -d: -f1)
+expect_err 1 "sphere.xml:$line: element <norsphere> of <normals> is not supported" "norsphere is refused by name" \
+    "$ASAN/vres-gencase" "$T/sphere.xml" -o "$T/x.h5"
+check "norsphere: one message" [ "$(wc -l <"$ERR")" -eq 1 ]
+# <norplane> is read (tests/vres-gencase/test_inout.sh): one without its point is refused by name
 sed -e 's|<norgeometry>|<norplane mkbound="0"><normal x="0" y="0" z="1"/></norplane><norgeometry>|' "$CASE" >"$T/plane.xml"
 line=$(grep -n "<norplane" "$T/plane.xml" | cut -d: -f1)
-expect_err 1 "plane.xml:$line: element <norplane> of <normals> is not supported" "norplane is refused by name" \
+expect_err 1 "plane.xml:$line: <norplane> needs <point x y z> or <point auto=\"true\">" "a norplane without its point is refused" \
     "$ASAN/vres-gencase" "$T/plane.xml" -o "$T/x.h5"
-check "norplane: one message" [ "$(wc -l <"$ERR")" -eq 1 ]
+check "norplane: nothing written" [ ! -e "$T/x.h5" ]
 sed -e 's|<setactive drawpoints="0" drawshapes="1" />|<setactive drawpoints="0" drawlines="1" />|' "$CASE" >"$T/attr.xml"
 line=$(grep -n "drawlines" "$T/attr.xml" | cut -d: -f1)
 expect_err 1 "attr.xml:$line: attribute 'drawlines' of <setactive> is not supported" "an unknown setactive attribute" \
