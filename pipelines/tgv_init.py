@@ -20,17 +20,15 @@ A line naming this command is put at the top of the store's history. Exit 0 on s
 a store that is not a 2-D vres store with fluid, 2 on a usage error.
 """
 import argparse
+import os
 import sys
-import time
 
-import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from vresstore import domains, fail, note_history, open_rw  # noqa: E402
 
-def fail(msg):
-    """Print one message naming this tool and exit 1."""
-    print(f"tgv_init.py: {msg}", file=sys.stderr)
-    sys.exit(1)
+TOOL = "tgv_init.py"
 
 
 def main():
@@ -39,28 +37,22 @@ def main():
     ap.add_argument("store")
     ap.add_argument("--U", type=float, default=1.0, help="velocity scale (m/s)")
     args = ap.parse_args()
-    try:
-        f = h5py.File(args.store, "r+")
-    except OSError as e:
-        fail(f"{args.store}: cannot open: {e}")
-    with f:
-        if f.attrs.get("format", b"") not in (b"vres-store", "vres-store") or int(f.attrs.get("dim", 0)) != 2:
-            fail(f"{args.store}: not a 2-D vres store")
+    with open_rw(TOOL, args.store, dim=2) as f:
         par = f["Parameters"].attrs
         rho0, B, gamma = float(par["rhop0"]), float(par["B"]), float(par["gamma"])
-        names = sorted((k for k in f["Domains"].keys() if k[0] == "D" and k[1:].isdigit()), key=lambda k: int(k[1:]))
+        names = domains(f)
         if not names or names[0] != "D0":
-            fail(f"{args.store}: no root domain D0")
+            fail(TOOL, f"{args.store}: no root domain D0")
         d0 = f["Domains/D0"]
         dp0 = float(d0.attrs["dp"])
         moved = np.isin(d0["Type"][:], (0, 1))  # fluid and buffer: together they tile the square
         if not (d0["Type"][:] == 0).any():
-            fail(f"{args.store}: no fluid particles")
+            fail(TOOL, f"{args.store}: no fluid particles")
         pos0 = d0["Position"][:]
         xmin, zmin = pos0[moved, 0].min(), pos0[moved, 2].min()
         L = pos0[moved, 0].max() - xmin + dp0
         if abs((pos0[moved, 2].max() - zmin + dp0) - L) > 1e-6 * L:
-            fail(f"{args.store}: the fluid is not a square")
+            fail(TOOL, f"{args.store}: the fluid is not a square")
         U = args.U
         nset = 0
         for name in names:
@@ -81,10 +73,7 @@ def main():
             d["Pressure"][...] = p
             d["Density"][...] = rho
             nset += int(sel.sum())
-        old = f.attrs.get("history", b"")
-        old = old.decode() if isinstance(old, bytes) else str(old)
-        line = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()) + " " + " ".join(["tgv_init.py"] + sys.argv[1:])
-        f.attrs.create("history", np.bytes_(line + ("\n" + old if old else "")))
+        note_history(f, TOOL)
     print(f"tgv_init.py: {args.store}: Taylor-Green vortex set on {nset} fluid and buffer particles "
           f"in {len(names)} domain(s), L = {L:g} m, U = {U:g} m/s", file=sys.stderr)
 

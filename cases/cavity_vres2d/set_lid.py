@@ -13,19 +13,16 @@ put at the top of the store's history. Exit 0 on success, 1 when the store has n
 (or is not a vres store), 2 on a usage error.
 """
 import argparse
+import os
 import sys
-import time
 
-import h5py
-import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "pipelines"))
+from vresstore import domains, fail, note_history, open_rw  # noqa: E402
+
+TOOL = "set_lid.py"
 
 FIXED = 2  # vres-store(5) Type of a fixed wall particle
-
-
-def fail(msg):
-    """Print one message naming this tool and exit 1."""
-    print(f"set_lid.py: {msg}", file=sys.stderr)
-    sys.exit(1)
 
 
 def main():
@@ -35,15 +32,9 @@ def main():
     ap.add_argument("--mk", type=int, default=1, help="mkbound of the lid's walls")
     ap.add_argument("--U", type=float, default=1.0, help="lid velocity along +x (m/s)")
     args = ap.parse_args()
-    try:
-        f = h5py.File(args.store, "r+")
-    except OSError as e:
-        fail(f"{args.store}: cannot open: {e}")
-    with f:
-        if f.attrs.get("format", b"") not in (b"vres-store", "vres-store") or "Domains" not in f:
-            fail(f"{args.store}: not a vres store")
+    with open_rw(TOOL, args.store) as f:
         total = 0
-        for name in sorted(k for k in f["Domains"].keys() if k[0] == "D" and k[1:].isdigit()):
+        for name in domains(f):
             d = f["Domains"][name]
             lid = (d["Type"][:] == FIXED) & (d["Mk"][:] == args.mk)
             if not lid.any():
@@ -53,11 +44,8 @@ def main():
             d["Velocity"][...] = vel
             total += int(lid.sum())
         if total == 0:
-            fail(f"{args.store}: no fixed wall particles of mkbound {args.mk} in any domain")
-        old = f.attrs.get("history", b"")
-        old = old.decode() if isinstance(old, bytes) else str(old)
-        line = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()) + " " + " ".join(["set_lid.py"] + sys.argv[1:])
-        f.attrs.create("history", np.bytes_(line + ("\n" + old if old else "")))
+            fail(TOOL, f"{args.store}: no fixed wall particles of mkbound {args.mk} in any domain")
+        note_history(f, TOOL)
 
 
 if __name__ == "__main__":

@@ -11,17 +11,15 @@ put at the top of the store's history. Exit 0 on success, 1 on a store that is n
 store with fluid, 2 on a usage error.
 """
 import argparse
+import os
 import sys
-import time
 
-import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "pipelines"))
+from vresstore import domains, fail, note_history, open_rw  # noqa: E402
 
-def fail(msg):
-    """Print one message naming this tool and exit 1."""
-    print(f"init_uniform.py: {msg}", file=sys.stderr)
-    sys.exit(1)
+TOOL = "init_uniform.py"
 
 
 def main():
@@ -30,14 +28,8 @@ def main():
     ap.add_argument("store")
     ap.add_argument("--U", type=float, default=1.0, help="stream velocity along x (m/s)")
     args = ap.parse_args()
-    try:
-        f = h5py.File(args.store, "r+")
-    except OSError as e:
-        fail(f"{args.store}: cannot open: {e}")
-    with f:
-        if f.attrs.get("format", b"") not in (b"vres-store", "vres-store"):
-            fail(f"{args.store}: not a vres store")
-        names = [k for k in f["Domains"].keys() if k[0] == "D" and k[1:].isdigit()]
+    with open_rw(TOOL, args.store) as f:
+        names = domains(f)
         nset = 0
         for name in names:
             d = f["Domains/" + name]
@@ -47,11 +39,8 @@ def main():
             d["Velocity"][...] = vel
             nset += int(sel.sum())
         if nset == 0:
-            fail(f"{args.store}: no fluid particles")
-        old = f.attrs.get("history", b"")
-        old = old.decode() if isinstance(old, bytes) else str(old)
-        line = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()) + " " + " ".join(["init_uniform.py"] + sys.argv[1:])
-        f.attrs.create("history", np.bytes_(line + ("\n" + old if old else "")))
+            fail(TOOL, f"{args.store}: no fluid particles")
+        note_history(f, TOOL)
     print(f"init_uniform.py: {args.store}: u = ({args.U:g}, 0, 0) m/s on {nset} fluid and buffer particles "
           f"in {len(names)} domain(s)", file=sys.stderr)
 
