@@ -113,34 +113,30 @@ for k in 0 5; do
         awk -v a="$v" -v b="$m0" 'BEGIN {exit !(a - b <= 1e-8 * b && b - a <= 1e-8 * b)}'
 done
 
-# ---- the interpolation order (--vres-order): kept in the snapshots, and a restart without
-# the option continues with the run's order, bit for bit; the order changes the flow
-expect 0 "coupled run with --vres-order 1 to 0.04 s" "$RUN" -q --vres-order 1 --tmax 0.04 --tout 0.02 "$T/parts.h5" -o "$T/o1"
-v=$(h5dump -a /Parameters/run_vres_order "$T/o1/snap_00001.h5" | sed -n 's/^ *(0): //p')
-check "snap_00001.h5 records run_vres_order 1 ($v)" [ "$v" = 1 ]
-expect 0 "restart from its snap_00001.h5 without --vres-order" "$RUN" -q --restart "$T/o1/snap_00001.h5" -o "$T/o1r"
-same_snaps "$T/o1" "$T/o1r" 2:2
-check "the first-order run differs from the default (auto) run at 0.04 s" \
-    sh -c "! h5diff -q '$T/a/snap_00002.h5' '$T/o1/snap_00002.h5' /Domains/D1/Velocity /Domains/D1/Velocity >/dev/null"
-expect_err 2 "--vres-order 3: must be 1, 2 or auto" "--vres-order 3 refused (exit 2) with its message" \
-    "$RUN" --vres-order 3 "$T/parts.h5" -o "$T/o3"
-check "nothing written for it" [ ! -e "$T/o3" ]
-
-# ---- the second order's condition limit (--vres-cond2): kept in the snapshots, and a restart
-# without the option continues with the run's limit, bit for bit; 50 (below the top row of a
-# surface's 134..180, kernels/interp_liu.h) changes the flow against the default's 1000
-expect 0 "coupled run with --vres-cond2 50 to 0.04 s" "$RUN" -q --vres-cond2 50 --tmax 0.04 --tout 0.02 "$T/parts.h5" -o "$T/k50"
-v=$(h5dump -a /Parameters/run_vres_cond2 "$T/k50/snap_00001.h5" | sed -n 's/^ *(0): //p')
-check "snap_00001.h5 records run_vres_cond2 50 ($v)" [ "$v" = 50 ]
+# ---- the coupling's options kept by a restart
+# option_kept OPTION VALUE PARAM RECORDED BAD MESSAGE: a coupled run to 0.04 s with --OPTION VALUE
+# records PARAM = RECORDED in its snapshots; a restart from its snap_00001.h5 without the option
+# continues with it, bit for bit; the option changes the flow against the default run's at 0.04 s;
+# --OPTION BAD is refused (exit 2, MESSAGE) with nothing written
+option_kept() {
+    local opt=$1 val=$2 par=$3 rec=$4 bad=$5 msg=$6 d="$T/$1-$2" v
+    expect 0 "coupled run with --$opt $val to 0.04 s" "$RUN" -q "--$opt" "$val" --tmax 0.04 --tout 0.02 "$T/parts.h5" -o "$d"
+    v=$(h5dump -a "/Parameters/$par" "$d/snap_00001.h5" | sed -n 's/^ *(0): //p')
+    check "snap_00001.h5 records $par $rec ($v)" [ "$v" = "$rec" ]
+    expect 0 "restart from its snap_00001.h5 without --$opt" "$RUN" -q --restart "$d/snap_00001.h5" -o "$d-r"
+    same_snaps "$d" "$d-r" 2:2
+    check "the run with --$opt $val differs from the default run at 0.04 s" \
+        sh -c "! h5diff -q '$T/a/snap_00002.h5' '$d/snap_00002.h5' /Domains/D1/Velocity /Domains/D1/Velocity >/dev/null"
+    expect_err 2 "$msg" "--$opt $bad refused (exit 2) with its message" "$RUN" "--$opt" "$bad" "$T/parts.h5" -o "$T/$opt-bad"
+    check "nothing written for it" [ ! -e "$T/$opt-bad" ]
+}
+# the interpolation order: first order against the default auto
+option_kept vres-order 1 run_vres_order 1 3 "--vres-order 3: must be 1, 2 or auto"
+# the second order's condition limit: 50 (below the top row of a surface's 134..180,
+# kernels/interp_liu.h) against the default 1000, which the default run records
+option_kept vres-cond2 50 run_vres_cond2 50 0.5 "--vres-cond2 0.5: must be at least 1"
 v=$(h5dump -a /Parameters/run_vres_cond2 "$T/a/snap_00001.h5" | sed -n 's/^ *(0): //p')
 check "the default run records run_vres_cond2 1000 ($v)" [ "$v" = 1000 ]
-expect 0 "restart from its snap_00001.h5 without --vres-cond2" "$RUN" -q --restart "$T/k50/snap_00001.h5" -o "$T/k50r"
-same_snaps "$T/k50" "$T/k50r" 2:2
-check "the run with --vres-cond2 50 differs from the default run at 0.04 s" \
-    sh -c "! h5diff -q '$T/a/snap_00002.h5' '$T/k50/snap_00002.h5' /Domains/D1/Velocity /Domains/D1/Velocity >/dev/null"
-expect_err 2 "--vres-cond2 0.5: must be at least 1" "--vres-cond2 0.5 refused (exit 2) with its message" \
-    "$RUN" --vres-cond2 0.5 "$T/parts.h5" -o "$T/k05"
-check "nothing written for it" [ ! -e "$T/k05" ]
 
 # ---- the segments' flux (--vres-flux): kept in the snapshots (run_vres_flux, kernels/couple.h's
 # code: balanced 0), and a restart without the option (nor VRES_FLUX) continues with the run's
