@@ -38,6 +38,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "crossing.h"
 #include "device.h"
 #include "interp_liu.h"
 #include "ptype.h"
@@ -172,41 +173,6 @@ VRES_HD static inline int vres_couple_flux_gate(const vres_liu_result *r, int di
     return r->method != VRES_LIU_NOSUPPORT && (r->div > VRES_COUPLE_DIV_GATE * dim || r->dmin < dp_min);
 }
 
-/* The share of a particle's slab of thickness dp (m), centred at depth s (m) below a segment's
- * plane on the band's side (s < 0: on the donor's side), that lies beyond the plane:
- * clamp(s / dp + 1/2, 0, 1). */
-VRES_HD static inline double vres_couple_slab(double s, double dp)
-{
-    const double f = s / dp + 0.5;
-    return f < 0 ? 0.0 : f > 1 ? 1.0 : f;
-}
-
-/* The share of a particle's extent [t - dp/2, t + dp/2] (m) along a tangent that the segment's
- * extent [-len/2, len/2] (m) covers. */
-VRES_HD static inline double vres_couple_cover(double t, double dp, double len)
-{
-    const double lo = fmax(t - 0.5 * dp, -0.5 * len), hi = fmin(t + 0.5 * dp, 0.5 * len);
-    return hi > lo ? (hi - lo) / dp : 0.0;
-}
-
-/* Two unit tangents t1, t2 of the unit normal n (2D: t1 in the x-z plane, t2 = y, unused). For an
- * axis-aligned n they are the other two axes, so a patch is aligned with the lattice. */
-VRES_HD static inline void vres_couple_tangents(const double n[3], int dim, double t1[3], double t2[3])
-{
-    if (dim == 2) {
-        t1[0] = -n[2], t1[1] = 0, t1[2] = n[0];
-        t2[0] = 0, t2[1] = 1, t2[2] = 0;
-        return;
-    }
-    /* e: the axis least aligned with n; t1 = n x e normalised, t2 = n x t1 */
-    const double ax = fabs(n[0]), ay = fabs(n[1]), az = fabs(n[2]);
-    const double e[3] = {(ax <= ay && ax <= az) ? 1.0 : 0.0, (ay < ax && ay <= az) ? 1.0 : 0.0, (az < ax && az < ay) ? 1.0 : 0.0};
-    double c[3] = {n[1] * e[2] - n[2] * e[1], n[2] * e[0] - n[0] * e[2], n[0] * e[1] - n[1] * e[0]};
-    const double l = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    for (int a = 0; a < 3; a++) t1[a] = c[a] / l;
-    t2[0] = n[1] * t1[2] - n[2] * t1[1], t2[1] = n[2] * t1[0] - n[0] * t1[2], t2[2] = n[0] * t1[1] - n[1] * t1[0];
-}
-
 /* The donor mass (kg) that crossed a segment (centre c, unit normal n, area A: a length in 2D, a
  * square patch of side sqrt(A) in 3D, moving at vbox m/s) into its band over the step of dt s,
  * negative for what crossed out. Each donor fluid particle b is a slab of the donor's spacing dp_b
@@ -222,49 +188,23 @@ VRES_HD static inline void vres_couple_tangents(const double n[3], int dim, doub
 VRES_HD static inline double vres_couple_crossing(const vres_donor *D, const double c[3], const double n[3],
                                                   double area, const double vbox[3], double dt)
 {
+    vres_cross X;
     const int dim = D->cells.dim;
-    const double dpb = D->dp, len = dim == 2 ? area : sqrt(area), h2 = 2.0 * D->o.k.h;
-    double t1[3], t2[3];
-    vres_couple_tangents(n, dim, t1, t2);
-    /* the segment's reach (|tangent| < (len + dp_b)/2, |depth| < dp_b, with a step's motion below
-       dp_b/2) is cut into np x np pieces, each within 2h of its centre, where its cells are sought */
-    const double w = len + dpb, reach_n = 1.5 * dpb;
-    int np = 1;
-    while ((dim - 1) * (0.5 * w / np) * (0.5 * w / np) + reach_n * reach_n >= h2 * h2 && np < 64) np++;
-    const int np2 = dim == 2 ? 1 : np;
+    vres_cross_init(&X, D->pos, D->pos0, c, n, area, vbox, dt, D->dp, D->o.k.h, D->cells.period, dim);
     double m = 0;
-    for (int p1 = 0; p1 < np; p1++)
-        for (int p2 = 0; p2 < np2; p2++) {
-            const double lo1 = -0.5 * w + p1 * w / np, lo2 = -0.5 * w + p2 * w / np;
-            const double s1 = lo1 + 0.5 * w / np, s2 = dim == 2 ? 0.0 : lo2 + 0.5 * w / np;
-            const double x[3] = {c[0] + s1 * t1[0] + s2 * t2[0], c[1] + s1 * t1[1] + s2 * t2[1],
-                                 c[2] + s1 * t1[2] + s2 * t2[2]};
+    for (int p1 = 0; p1 < X.np; p1++)
+        for (int p2 = 0; p2 < (dim == 2 ? 1 : X.np); p2++) {
+            double x[3];
+            vres_cross_piece(&X, p1, p2, x);
             vres_cell_range nb[27];
             const int nc = vres_cells_neighbours(&D->cells, x, nb);
             for (int q = 0; q < nc; q++)
                 for (size_t b = nb[q].begin; b < nb[q].end; b++) {
                     if (!vres_type_is_fluid(D->type[b])) continue;
-                    double d[3], d0[3];
+                    double d[3];
                     for (int a = 0; a < 3; a++) d[a] = D->pos[3 * b + a] + nb[q].shift[a] - c[a];
                     if (dim == 2) d[1] = 0;
-                    const double u1 = d[0] * t1[0] + d[1] * t1[1] + d[2] * t1[2];
-                    const double u2 = dim == 2 ? 0.0 : d[0] * t2[0] + d[1] * t2[1] + d[2] * t2[2];
-                    /* counted once: by the piece whose tangential span holds it (tested before
-                       the step's displacement is formed: most candidates of the cells fail it) */
-                    if (u1 < lo1 || u1 >= lo1 + w / np || (dim == 3 && (u2 < lo2 || u2 >= lo2 + w / np))) continue;
-                    const double cover = vres_couple_cover(u1, dpb, len) * (dim == 2 ? 1.0 : vres_couple_cover(u2, dpb, len));
-                    if (cover <= 0) continue;
-                    for (int a = 0; a < 3; a++) {
-                        /* the step's displacement, less a period where the particle wrapped */
-                        double u = D->pos[3 * b + a] - D->pos0[3 * b + a];
-                        const double L = D->cells.period[a];
-                        if (L > 0) u -= L * floor(u / L + 0.5);
-                        d0[a] = d[a] - u + vbox[a] * dt;
-                    }
-                    if (dim == 2) d0[1] = 0;
-                    const double sn = -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
-                    const double s0 = -(d0[0] * n[0] + d0[1] * n[1] + d0[2] * n[2]);
-                    m += D->mass[b] * cover * (vres_couple_slab(sn, dpb) - vres_couple_slab(s0, dpb));
+                    m += vres_cross_term(&X, b, d, D->mass[b]);
                 }
         }
     return m;
@@ -325,20 +265,30 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
 {
     const vres_donor *D = &donors[S.donor[s]];
     const double *p = &S.pos[3 * s], *n = &S.normal[3 * s];
-    vres_liu_result r = vres_liu_at(&D->cells, vres_couple_opts(D, dp), D->pos, D->vel, D->rho, D->mass, D->type, p);
+    const int counts = S.method == VRES_FLUX_BALANCED || S.method == VRES_FLUX_CAPPED;
+    /* the crossing count where the method needs it: summed by the interpolation's own pass over
+       the donors where one piece covers the segment's reach (crossing.h), else by its own */
+    vres_cross X;
+    const int cross = counts || S.method == VRES_FLUX_CROSSING;
+    if (cross)
+        vres_cross_init(&X, D->pos, D->pos0, p, n, S.area[s], &S.vbox[3 * s], dt, D->dp, D->o.k.h, D->cells.period,
+                        D->cells.dim);
+    const int fused = cross && X.np == 1;
+    vres_liu_result r = vres_liu_at_x(&D->cells, vres_couple_opts(D, dp), D->pos, D->vel, D->rho, D->mass, D->type, p,
+                                      fused ? &X : NULL);
+    const double crossed = !cross ? 0.0 : fused ? X.m : vres_couple_crossing(D, p, n, S.area[s], &S.vbox[3 * s], dt);
     S.rho[s] = (float)r.rho;
     for (int a = 0; a < 3; a++) S.vel[3 * s + a] = (float)r.v[a];
     const double dpmin = dp < D->dp ? dp : D->dp;
-    const int counts = S.method == VRES_FLUX_BALANCED || S.method == VRES_FLUX_CAPPED;
     if (counts) {
         S.dm[s] = 0;
-        S.cross[s] = vres_couple_crossing(D, p, n, S.area[s], &S.vbox[3 * s], dt);
+        S.cross[s] = crossed;
     }
     if (vres_couple_wall_gate(&w, p, n, dp)) {
         S.mass[s] = 0;
         S.state[s] = VRES_SEG_WALL;
     } else if (S.method == VRES_FLUX_CROSSING) {
-        S.mass[s] = vres_couple_accumulate(S.mass[s], vres_couple_crossing(D, p, n, S.area[s], &S.vbox[3 * s], dt));
+        S.mass[s] = vres_couple_accumulate(S.mass[s], crossed);
         S.state[s] = VRES_SEG_FLUX;
     } else if (!vres_couple_flux_gate(&r, D->cells.dim, S.method == VRES_FLUX_BALANCED ? 0.0 : dpmin)) {
         /* BALANCED: the divergence alone gates (no near-donor exception): a thin front's mass is

@@ -94,6 +94,7 @@
 #include <string.h>
 
 #include "cells.h"
+#include "crossing.h"
 #include "device.h"
 #include "ptype.h"
 #include "wendland.h"
@@ -126,8 +127,8 @@ typedef struct vres_liu_result {
     double rho;      /* density (kg/m^3); NaN with VRES_LIU_NOSUPPORT */
     double v[3];     /* velocity (m/s), all three components (2D donors carry v_y, normally 0); NaN with NOSUPPORT */
     double shepard;  /* Shepard sum sum_b V_b W_b over donor fluid (dimensionless) */
-    double cond;     /* kappa = ||Ah||_inf ||Ah^-1||_inf (dimensionless); INFINITY when singular, NaN when not
-                        computed (NOSUPPORT) */
+    double cond;     /* kappa = ||Ah||_inf ||Ah^-1||_inf of the first-order block (dimensionless); INFINITY when
+                        singular, NaN when not computed (NOSUPPORT, or the second order was used) */
     double div;      /* D = -sum_b V_b F r^2 over donor fluid and walls (dimensionless) */
     double dmin;     /* distance to the nearest donor fluid particle within 2h (m); INFINITY when none */
     double cond2;    /* kappa2 of the second-order system (dimensionless); NaN when order 1 was asked */
@@ -258,7 +259,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU
  * behind s, which the compiler would have to assume aliases the donors' positions). As
  * kernels/sph.h's vres_sph_interact2d, each pass over up to VRES_LIU_LIST candidates
  *   1. computes their offsets and distances (vector instructions over a run of slots);
- *   2. keeps the donor fluid and walls inside the support, without a branch;
+ *   2. keeps the candidates inside the support, then of those the donor fluid and walls, without a
+ *      branch;
  *   3. gathers their masses and densities;
  *   4. computes each kept donor's kernel terms (square root, W, F, dF/dr, its volume and its
  *      divisions) over those arrays, without a branch (vector instructions again: selects of
@@ -273,8 +275,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU
  * adds them in the same order, so the results are the same to the bit. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
                                              const double *pos, const float *vel, const float *rho,
-                                             const double *mass, const uint8_t *type, const double x[3], const int N,
-                                             const int DIM)
+                                             const double *mass, const uint8_t *type, const double x[3],
+                                             vres_cross *X, const int N, const int DIM)
 {
     vres_cell_range nb[27];
     int m, cx[3];
@@ -292,6 +294,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         for (int q = p; q < DIM; q++, c++) qi[c] = ax[p], qj[c] = ax[q];
     double A[VRES_LIU_NMAX][VRES_LIU_ROW], Rt[VRES_LIU_NMAX][4], div = s->div, d2min = s->d2min;
     int nfluid = s->nfluid;
+    double cm = 0; /* X's crossing count so far (kg) */
     for (int i = 0; i < N; i++) {
         for (int j = 0; j < P; j++) A[i][j] = j < N ? s->a[i][j] : 0.0;
         for (int q = 0; q < 4; q++) Rt[i][q] = s->r[q][i];
@@ -337,16 +340,23 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             b0 = e;
             if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
         }
-        /* 2, 3: the donor fluid and walls in the support, and their masses and densities */
-        int nk = 0;
+        /* 2: the candidates inside the support (about a third of them), then of those the donor
+           fluid and walls, each pass without a branch; 3: their masses and densities */
+        int ns = 0;
         for (int j = 0; j < nc; j++) {
+            L.kept[ns] = (uint8_t)j;
+            ns += L.r2[j] < fourh2;
+        }
+        int nk = 0;
+        for (int i = 0; i < ns; i++) {
+            const int j = L.kept[i]; /* read before kept[nk], nk <= i, is written */
             const size_t b = L.b[j];
             const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
             L.kept[nk] = (uint8_t)j;
             Q.r2[nk] = L.r2[j];
             Q.mb[nk] = mass[b];
             Q.den[nk] = fluid ? (double)rho[b] : rho0;
-            nk += (fluid || wall) && L.r2[j] < fourh2;
+            nk += fluid || wall;
         }
         /* 4: their kernel terms */
 #pragma omp simd
@@ -371,6 +381,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             const double r2 = Q.r2[j];
             d2min = r2 < d2min ? r2 : d2min;
             const double d[3] = {L.d[0][i0], L.d[1][i0], L.d[2][i0]};
+            if (X) cm += vres_cross_term(X, b, d, Q.mb[j]);
             /* column e = [1, d/h (, d_i d_j / h^2)]; test row tr = V [W, h grad_a W (, h^2 grad_a grad_a W)]
                = V [W, -F h^2 (d/h) (, h^2 F delta_ij + h^2 (dF/dr) d_i d_j / r)] */
             double *e = S.e[nf], *tr = S.tr[nf];
@@ -398,22 +409,36 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         for (int q = 0; q < 4; q++) s->r[q][i] = Rt[i][q];
     }
     s->div = div, s->d2min = d2min, s->nfluid = nfluid;
+    if (X) X->m = cm;
 }
 
 /* Accumulate into s the donors of x (m) in the cells g (slot order): positions (m), velocities
  * (m/s), densities (kg/m^3), masses (kg) and types (store.h) of the donor domain. Fluid enters
- * everything, walls only D; buffer and inlet particles nothing. 2D ignores y (x-z plane). */
+ * everything, walls only D; buffer and inlet particles nothing. 2D ignores y (x-z plane). With X
+ * (else NULL), the segment at x, whose reach one piece covers (X->np 1), also gets its crossing
+ * count over the donors inside the support into X->m (kg): every particle that can add to it is
+ * one (a step's motion stays below dp_b / 2, crossing.h), so it is vres_couple_crossing's sum, the
+ * same terms in the same order. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_x(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
+                                                               const double *pos, const float *vel, const float *rho,
+                                                               const double *mass, const uint8_t *type,
+                                                               const double x[3], vres_cross *X)
+{
+    if (g->dim == 2) {
+        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 6, 2);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 3, 2);
+    } else {
+        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 10, 3);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 4, 3);
+    }
+}
+
+/* vres_liu_gather_x without a segment. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o, const double *pos,
                                            const float *vel, const float *rho, const double *mass,
                                            const uint8_t *type, const double x[3])
 {
-    if (g->dim == 2) {
-        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 6, 2);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 3, 2);
-    } else {
-        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 10, 3);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, 4, 3);
-    }
+    vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL);
 }
 
 /* VRES_LIU_UNROLL before a loop over the rows or columns of a matrix of constant size: GCC
@@ -552,18 +577,17 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
         return res;
     }
     double inv[VRES_LIU_NMAX][VRES_LIU_NMAX], f[4];
-    res.cond = vres_liu_block_cond(s, n1, inv);
-    if (o.order == 2 && s->n > n1) {
-        double inv2[VRES_LIU_NMAX][VRES_LIU_NMAX];
-        res.cond2 = vres_liu_block_cond(s, s->n, inv2);
+    if (o.order == 2 && s->n > n1) { /* kappa of the first-order block only where it is needed */
+        res.cond2 = vres_liu_block_cond(s, s->n, inv);
         if (o.cond_max > 0 && res.cond2 <= o.cond2_max) {
             res.method = VRES_LIU_CORRECTED, res.order = 2;
-            vres_liu_first_row(s, s->n, inv2, f);
+            vres_liu_first_row(s, s->n, inv, f);
             res.rho = f[0];
             res.v[0] = f[1], res.v[1] = f[2], res.v[2] = f[3];
             return res;
         }
     }
+    res.cond = vres_liu_block_cond(s, n1, inv);
     if (o.cond_max > 0 && res.cond <= o.cond_max) {
         res.method = VRES_LIU_CORRECTED, res.order = 1;
         vres_liu_first_row(s, n1, inv, f);
@@ -577,17 +601,26 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
 }
 
 /* Density, velocity, method and gate quantities at x (m) from the donor domain (cells g in
- * slot order, arrays as vres_liu_gather) under the settings o. A point outside the donor's
- * cell box has no donors: VRES_LIU_NOSUPPORT. Compiled for AVX2 too (VRES_CLONES: the
- * gather's row updates four doubles at a time), with the same bits. */
-VRES_HD VRES_CLONES static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_opts o, const double *pos,
-                                                  const float *vel, const float *rho, const double *mass,
-                                                  const uint8_t *type, const double x[3])
+ * slot order, arrays as vres_liu_gather) under the settings o; with X (else NULL), the crossing
+ * count of the segment at x into X->m (vres_liu_gather_x). A point outside the donor's cell box
+ * has no donors: VRES_LIU_NOSUPPORT. Compiled for AVX2 too (VRES_CLONES: the gather's row
+ * updates four doubles at a time), with the same bits. */
+VRES_HD VRES_CLONES static inline vres_liu_result vres_liu_at_x(const vres_cells *g, vres_liu_opts o, const double *pos,
+                                                    const float *vel, const float *rho, const double *mass,
+                                                    const uint8_t *type, const double x[3], vres_cross *X)
 {
     vres_liu_acc s;
     vres_liu_acc_zero(&s, vres_liu_size(g->dim, o.order));
-    vres_liu_gather(&s, g, o, pos, vel, rho, mass, type, x);
+    vres_liu_gather_x(&s, g, o, pos, vel, rho, mass, type, x, X);
     return vres_liu_solve(&s, g->dim, o);
+}
+
+/* vres_liu_at_x without a segment. */
+VRES_HD static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_opts o, const double *pos,
+                                                  const float *vel, const float *rho, const double *mass,
+                                                  const uint8_t *type, const double x[3])
+{
+    return vres_liu_at_x(g, o, pos, vel, rho, mass, type, x, NULL);
 }
 
 /* 1 where an interface point with result r may accumulate mass (DualSPHysics 5.4's rule): it has
