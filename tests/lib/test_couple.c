@@ -217,6 +217,51 @@ START_TEST(test_crossing)
 }
 END_TEST
 
+/* The crossing count summed by the interpolation's pass over the donors (vres_liu_at_x, where
+ * one piece covers the segment's reach) is vres_couple_crossing's own, to the bit: a jittered
+ * lattice moved a step of 0.6 mm along (1, 0, 0.5) under segments of three normals (x, -x, z) at
+ * every 3 mm over the water, with both interpolation orders; some of them must count mass. */
+START_TEST(test_crossing_fused)
+{
+    donor_set S = donor_new(RHO0, 1.5, 0, 0, 1);
+    uint64_t seed = 777;
+    const size_t n = S.d.n;
+    double *x0 = malloc(3 * n * sizeof *x0);
+    for (size_t b = 0; b < n; b++)
+        for (int a = 0; a < 3; a += 2) {
+            seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+            S.d.pos[3 * b + a] += 0.2 * DP * ((double)(seed >> 11) / 9007199254740992.0 * 2 - 1);
+        }
+    memcpy(x0, S.d.pos, 3 * n * sizeof *x0);
+    for (size_t b = 0; b < n; b++) S.d.pos[3 * b] += 0.0006, S.d.pos[3 * b + 2] += 0.0003;
+    vres_cells_build(&S.g, S.d.pos, n); /* sorted after the step, the start following */
+    double *tmp = malloc(3 * n * sizeof *tmp);
+    for (size_t a = 0; a < n; a++) memcpy(&tmp[3 * a], &x0[3 * S.g.perm[a]], 3 * sizeof *tmp);
+    REQUIRE(vres_cells_reorder(&S.g, &S.d) == 0, "cells reorder");
+    S.v.cells = S.g, S.v.pos = S.d.pos, S.v.pos0 = tmp;
+    S.v.vel = S.d.vel, S.v.rho = S.d.rho, S.v.mass = S.d.mass_p, S.v.type = S.d.type;
+    const double normals[3][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}}, vbox[3] = {0, 0, 0}, dpc = 0.01, dt = 1e-4;
+    int compared = 0, counting = 0;
+    for (int k = 0; k < 3; k++)
+        for (double x = 0.2; x < 0.8; x += 0.003)
+            for (int order = 1; order <= 2; order++) {
+                const double c[3] = {x, 0, fmod(x * 7.0, 0.33)};
+                vres_cross X;
+                vres_cross_init(&X, S.v.pos, S.v.pos0, c, normals[k], dpc, vbox, dt, DP, S.v.o.k.h, S.g.period, 2);
+                ck_assert_int_eq(X.np, 1);
+                vres_liu_opts o = S.v.o;
+                o.order = order;
+                vres_liu_at_x(&S.v.cells, o, S.v.pos, S.v.vel, S.v.rho, S.v.mass, S.v.type, c, &X);
+                const double want = vres_couple_crossing(&S.v, c, normals[k], dpc, vbox, dt);
+                ck_assert_msg(X.m == want, "normal %d at (%g, %g): %.17g, separately %.17g", k, c[0], c[2], X.m, want);
+                compared++, counting += want != 0;
+            }
+    ck_assert_msg(counting > compared / 10, "only %d of %d segments counted mass", counting, compared);
+    free(x0), free(tmp);
+    donor_free(&S);
+}
+END_TEST
+
 /* The crossing flux on a periodic axis: a lattice periodic in x over [0, 1) m moving along +x by
  * 0.4 mm a step and wrapped, re-sorted after every step as a run's exchange does, through segments at x = 0.03 m,
  * next to the wrap. A particle that wrapped in the step moved a step, not a period: after K
@@ -375,6 +420,7 @@ int main(void)
     tcase_add_test(tc, test_tangents);
     tcase_add_test(tc, test_crossing);
     tcase_add_test(tc, test_crossing_periodic);
+    tcase_add_test(tc, test_crossing_fused);
     tcase_add_test(tc, test_classify);
     tcase_add_test(tc, test_buffers);
     tcase_add_test(tc, test_birth);
