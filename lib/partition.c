@@ -44,7 +44,9 @@ typedef struct plan {
     pdom *d;             /* [n] domains, parents first */
     int nerr;            /* problems found */
     double dmin[3], dmax[3]; /* the simulation domain the boxes are cut to (sim_extent) */
-    vres_sweep sw;       /* the bodies' motions over [0, TimeMax] when a box follows one (sw.n = 0: none does) */
+    vres_sweep sw;       /* the bodies' motions over [0, TimeMax] when a box follows one or a moving wall may
+                            enter a box (sw.n = 0: neither) */
+    double (*reach_lo)[3], (*reach_hi)[3]; /* [s->nbodies] each body's particles at t = 0 (m; lo > hi: none) */
 } plan;
 
 /* "bufferbox K (line L)" for messages about domain k (its box's 1-based index in the case). */
@@ -392,11 +394,22 @@ static void check_tracking(plan *p, int k)
                    "TimeMax", d->tracking_mk);
 }
 
-/* Sample the bodies' motions over [0, TimeMax] when a box follows one (p->sw), each body's
- * reach its particles and the boxes (buffer bands grown by the drawing's margin) that follow
- * it, no point of a reach moving more than the finest tracking dp between samples; each
+/* 1 when a wall particle of the root moves with a body of the store (an <objreal> motion). */
+static int walls_move(const plan *p)
+{
+    const vres_domain *r = &p->s->dom[0];
+    for (size_t i = 0; i < r->n; i++)
+        if (r->type[i] == VRES_MOVING && vres_track_body(p->s, r->mk[i]) >= 0) return 1;
+    return 0;
+}
+
+/* Sample the bodies' motions over [0, TimeMax] (p->sw) when a box follows one, or when walls
+ * move and there are boxes (a moving wall may slide into a box that stands still: the box's
+ * domain then needs the wall's particles everywhere it goes, at its dp), each body's reach its
+ * particles and the boxes (buffer bands grown by the drawing's margin) that follow it, no point
+ * of a reach moving more than the finest dp of the boxes concerned between samples; each
  * tracking region then follows its body (its motion at t = 0, the sweep's end as track_until).
- * 0, or -1 after reporting. */
+ * Each body's particles' extent goes to p->reach_lo/hi. 0, or -1 after reporting. */
 static int make_sweep(plan *p)
 {
     const vres_store *s = p->s;
@@ -404,8 +417,17 @@ static int make_sweep(plan *p)
     double step = INFINITY;
     for (int k = 1; k < p->n; k++)
         if (p->d[k].body >= 0) step = fmin(step, p->d[k].dp);
+    if (!(step < INFINITY) && p->n > 1 && walls_move(p)) {
+        if (!(vres_params_get(&s->params, "TimeMax", 0) > 0)) {
+            perr(p, 1, "walls move (an <objreal> motion) and the store has no TimeMax: a box's domain gets a moving "
+                       "wall's particles along its path up to TimeMax");
+            return -1;
+        }
+        for (int k = 1; k < p->n; k++) step = fmin(step, p->d[k].dp);
+    }
     if (!(step < INFINITY)) return 0;
     double (*lo)[3] = vres_xmalloc(sizeof *lo * nb), (*hi)[3] = vres_xmalloc(sizeof *hi * nb);
+    p->reach_lo = vres_xmalloc(sizeof *lo * (nb ? nb : 1)), p->reach_hi = vres_xmalloc(sizeof *hi * (nb ? nb : 1));
     for (size_t b = 0; b < nb; b++)
         for (int a = 0; a < 3; a++) lo[b][a] = INFINITY, hi[b][a] = -INFINITY;
     const vres_domain *r = &s->dom[0];
@@ -414,6 +436,7 @@ static int make_sweep(plan *p)
         for (int a = 0; b >= 0 && a < 3; a++)
             lo[b][a] = fmin(lo[b][a], r->pos[3 * i + a]), hi[b][a] = fmax(hi[b][a], r->pos[3 * i + a]);
     }
+    memcpy(p->reach_lo, lo, sizeof *lo * nb), memcpy(p->reach_hi, hi, sizeof *hi * nb);
     for (int k = 1; k < p->n; k++) {
         const pdom *d = &p->d[k];
         double g = 2 * d->h + d->dp;
@@ -436,7 +459,7 @@ static int make_sweep(plan *p)
         vres_track_at(&d->reg, &s->body[d->body], 0);
         d->reg.track_until = p->sw.tmax;
     }
-    vres_debug("tracking boxes: the bodies' motions sampled %zu times over [0, %g] s, at most %g m apart", p->sw.n,
+    vres_debug("the sweep: the bodies' motions sampled %zu times over [0, %g] s, at most %g m apart", p->sw.n,
                p->sw.tmax, p->sw.step);
     return 0;
 }
@@ -471,6 +494,43 @@ static void box_at(const plan *p, int j, size_t i, const double lo[3], const dou
                    double whi[3])
 {
     box_in(p, j, -1, i, lo, hi, wlo, whi);
+}
+
+/* No moving wall (of a body other than the one box k follows) comes, at any sample of the
+ * sweep, within reach of k's buffer bands: its own band, between its buffer box and its box, and
+ * its parent's, between its box and its inner box, each grown by the parent's kernel support
+ * and spacing. Buffer particles move with the flow interpolated from the other domain and do
+ * not see a wall of their own: a moving wall overruns them, and a wall particle they sit on
+ * takes a runaway density (measured: cases/tracking_plate2d's block pulled into a box that
+ * stood still blew up at t = 0.243 s, a fine wall particle at 1438 kg/m^3 with a buffer particle
+ * 0.9 mm from it). Walls that move inside a box's fluid region, or outside the box and its
+ * bands, are drawn along their path (moving_walls_in). */
+static void check_moving_walls(plan *p, int k)
+{
+    const pdom *d = &p->d[k];
+    const vres_domain *r = &p->s->dom[0];
+    const double g = 2 * p->d[d->parent].h + 0.5 * p->d[0].dp; /* a root wall particle stands for finer ones
+                                                                     within half its spacing */
+    vres_region reg = d->reg;
+    for (size_t i = 0; i < p->sw.n; i++) {
+        if (d->body >= 0) reg.mot = p->sw.mv[i * p->sw.nbodies + (size_t)d->body];
+        for (size_t q = 0; q < r->n; q++) {
+            const int b = r->type[q] == VRES_MOVING ? vres_track_body(p->s, r->mk[q]) : -1;
+            if (b < 0 || b == d->body) continue;
+            double x[3], y[3];
+            vres_sweep_place(p->s, &p->sw, i, r->type[q], r->mk[q], &r->pos[3 * q], x);
+            const double *z = vres_region_local(&reg, x, y);
+            if (!vres_region_in_box(reg.buff_lo, reg.buff_hi, g, z, p->dim) ||
+                vres_region_in_box(reg.inner_lo, reg.inner_hi, -g, z, p->dim))
+                continue;
+            perr(p, k, "the moving wall mkbound %d comes within %g m (the kernel support) of its buffer bands at "
+                       "t = %g s, at (%g, %g, %g) m: buffer particles follow the flow interpolated from the other "
+                       "domain and do not see a wall; keep a moving wall inside a box's fluid region or away from the "
+                       "box, or let the box follow its body (<tracking mkbound=\"%d\"/>)",
+                 r->mk[q], g, p->sw.tmax * (double)i / (double)(p->sw.n - 1), x[0], x[1], x[2], r->mk[q]);
+            return;
+        }
+    }
 }
 
 /* Along its path a box k that moves or stands in a box that moves stays, with its buffer band,
@@ -567,9 +627,46 @@ static void swept_walls(const plan *p, int k, const vres_domain *src, double sup
  * Drawing and sorting the particles
  * ---------------------------------------------------------------------------------------- */
 
+/* Grow clip (domain k's drawing box) to hold, where they are at t = 0, the particles of every
+ * moving body (other than the one k follows) that come within g (m) of k's buffer box at some
+ * sample of the sweep: the box there, seen in the body's frame at t = 0, cut to the body's
+ * extent (grown by g and a root spacing). Fluid and fixed walls drawn there too are dropped by
+ * sort_domain (fluid outside k's regions, walls off its support at every sample). */
+static void moving_walls_in(const plan *p, int k, double g, vres_clip *clip)
+{
+    const pdom *d = &p->d[k];
+    const size_t nb = p->s->nbodies;
+    const double rg = g + p->d[0].dp;
+    for (size_t b = 0; p->sw.n && b < nb; b++) {
+        if ((int)b == d->body || !(p->reach_lo[b][0] <= p->reach_hi[b][0])) continue;
+        for (size_t i = 0; i < p->sw.n; i++) {
+            double wlo[3], whi[3], lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+            box_at(p, k, i, d->reg.buff_lo, d->reg.buff_hi, wlo, whi);
+            vres_region m; /* the body's motion at the sample, through region.h's map */
+            memset(&m, 0, sizeof m);
+            m.track = 1, m.mot = p->sw.mv[i * nb + b];
+            for (int c = 0; c < 8; c++) {
+                const double x[3] = {c & 1 ? whi[0] + g : wlo[0] - g, c & 2 ? whi[1] + g : wlo[1] - g,
+                                     c & 4 ? whi[2] + g : wlo[2] - g};
+                double y[3];
+                const double *q = vres_region_local(&m, x, y);
+                for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], q[a]), hi[a] = fmax(hi[a], q[a]);
+            }
+            int meets = 1;
+            for (int a = 0; a < 3; a++) {
+                lo[a] = fmax(lo[a], p->reach_lo[b][a] - rg), hi[a] = fmin(hi[a], p->reach_hi[b][a] + rg);
+                if (!(p->dim == 2 && a == 1) && !(lo[a] <= hi[a])) meets = 0;
+            }
+            for (int a = 0; meets && a < 3; a++)
+                if (!(p->dim == 2 && a == 1)) clip->lo[a] = fmin(clip->lo[a], lo[a]), clip->hi[a] = fmax(clip->hi[a], hi[a]);
+        }
+    }
+}
+
 /* Redraw child k at its dp in its buffer box grown by the kernel support (and a dp), less its
  * children's inner boxes shrunk by as much (not those of boxes that move); a tracking box is
- * drawn in the box around every place of its path (grown by the sweep's spacing too). NULL
+ * drawn in the box around every place of its path (grown by the sweep's spacing too), and
+ * every box also where moving walls that come into it start from (moving_walls_in). NULL
  * after the reader said why. */
 static vres_store *draw_child(plan *p, int k)
 {
@@ -585,6 +682,7 @@ static vres_store *draw_child(plan *p, int k)
         for (int a = 0; a < 3; a++)
             clip.lo[a] = fmin(clip.lo[a], lo[a] - g - p->sw.step), clip.hi[a] = fmax(clip.hi[a], hi[a] + g + p->sw.step);
     }
+    moving_walls_in(p, k, g + p->sw.step, &clip);
     for (int j = k + 1; j < p->n; j++) {
         if (p->d[j].parent != k || p->d[j].body >= 0) continue;
         int ok = 1;
@@ -774,9 +872,11 @@ int vres_partition(vres_store *s, const vres_part_opts *o)
     for (int k = 1; k < p->n && !p->nerr; k++)
         if (p->d[k].body >= 0 || p->d[p->d[k].parent].body >= 0) check_path(p, k);
     for (int k = 1; k < p->n && !p->nerr; k++) check_bodies(p, k);
+    for (int k = 1; k < p->n && !p->nerr && p->sw.n; k++) check_moving_walls(p, k);
     vres_domain *nd = p->nerr ? NULL : build_domains(p);
     if (!nd) {
         vres_sweep_free(&p->sw);
+        free(p->reach_lo), free(p->reach_hi);
         free(p->d);
         return -1;
     }
@@ -790,6 +890,7 @@ int vres_partition(vres_store *s, const vres_part_opts *o)
     build_ifaces(p);
     keep_boxes(p);
     vres_sweep_free(&p->sw);
+    free(p->reach_lo), free(p->reach_hi);
     free(p->d);
     return 0;
 }
