@@ -256,8 +256,12 @@ VRES_HD static inline int vres_sph_walls_meet(const int walls, int ta, int tb)
 
 /* The interaction of particle a with its neighbours in the cells g: for a fluid particle the
  * acceleration ace[3a] (m/s^2, gravity included), density rate ar[a] (kg/m^3/s) and the
- * largest viscous rate visc[a] (1/s); for a wall particle (DBC) ar[a] from its fluid (and
- * buffer) neighbours only, ace zero; with walls VRES_WALLS_FLOATING a floating body's particle
+ * largest viscous rate visc[a] (1/s); for a wall particle (DBC) ar[a] from its fluid
+ * neighbours only, ace zero (not from buffer particles: they move with the velocity interpolated
+ * from the other domain, which does not see this domain's walls, and near a floor that velocity
+ * points into the wall, so a wall under a buffer band was compressed without the fluid answering:
+ * still water with a box across a DBC floor ran at 1 to 2.5 m/s, 0.02 to 0.04 m/s without them,
+ * as the single-resolution runs; tests/vres-run/test_vres_dbc.sh); with walls VRES_WALLS_FLOATING a floating body's particle
  * also sums, into ace (gravity left out: its body carries it), the pressure and viscous terms
  * of its fluid and non-floating wall neighbours (with the walls' viscosity, as they see it), and
  * floating and non-floating walls add each other to their density rates (vres_sph_walls_meet),
@@ -301,6 +305,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
             const int wall_b = walls && !vres_type_acts_fluid(type[b]);
             /* DBC: walls do not interact with walls, but for a floating body's against others' */
             if (!fluid_a && wall_b && !vres_sph_walls_meet(walls, type[a], type[b])) continue;
+            /* DBC: a wall's density ignores buffer particles (vres_sph_interact's comment) */
+            if (!fluid_a && !float_a && vres_type_is_buffer(type[b])) continue;
             double dx[3] = {xa[0] - (pos[3 * b] + nb[c].shift[0]), xa[1] - (pos[3 * b + 1] + nb[c].shift[1]),
                             xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
             double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
@@ -674,7 +680,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
             L.kept[nkept] = (uint8_t)j;
             nkept += (int)L.in[j];
         }
-        /* 3: their data; a wall particle a (DBC) leaves out its wall neighbours */
+        /* 3: their data; a wall particle a (DBC) leaves out its wall and buffer neighbours */
         int np = 0;
         for (int j = 0; j < nkept; j++) {
             const int i = L.kept[j];
@@ -686,7 +692,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
             if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b || float_a ? visc_wall : visc_fluid;
             if (shift && wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(P->type[b]))))
                 noshift = 1;
-            np += fluid_a || !wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b]);
+            np += (fluid_a || !wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b])) &&
+                  (fluid_a || float_a || !vres_type_is_buffer(P->type[b])); /* nor buffer particles */
         }
         /* 4: the pair terms. Where vres_sph_interact skips a term, a select of one of its
            inputs makes it zero: a select of the term itself would have the compiler compute the
