@@ -204,6 +204,12 @@ check_args() {
     fi
 }
 
+# RUN_EXTRA: the extra vres-run options of VRES_RUN_ARGS in the environment (split at spaces;
+# e.g. VRES_RUN_ARGS='--vres-order 1', for a sweep of the coupling's options), which run_case and
+# every check that runs vres-run itself pass on.
+RUN_EXTRA=()
+read -r -a RUN_EXTRA <<<"${VRES_RUN_ARGS:-}"
+
 # run_case XML [GENCASE OPTION]...: generate the case at $DP (the case's own dp when empty),
 # with the --set options of $SETS,
 # and run it into $RUNDIR with $THREADS threads (OpenMP's choice when empty) to $TMAX (the
@@ -224,9 +230,7 @@ run_case() {
         mv "$WORK/parts.h5" "$WORK/case.h5"
     fi
     note "running $(basename "$xml") at dp ${DP:-as in the case} into $RUNDIR"
-    local extra=()
-    read -r -a extra <<<"${VRES_RUN_ARGS:-}"
-    "$VRES_BIN/vres-run" -q ${THREADS:+--threads "$THREADS"} ${TMAX:+--tmax "$TMAX"} "${extra[@]}" \
+    "$VRES_BIN/vres-run" -q ${THREADS:+--threads "$THREADS"} ${TMAX:+--tmax "$TMAX"} "${RUN_EXTRA[@]}" \
         "$WORK/case.h5" -o "$RUNDIR" 2>"$WORK/run.log"
     RUN_STATUS=$?
     rm -f "$WORK/case.h5"
