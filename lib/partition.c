@@ -496,43 +496,6 @@ static void box_at(const plan *p, int j, size_t i, const double lo[3], const dou
     box_in(p, j, -1, i, lo, hi, wlo, whi);
 }
 
-/* No moving wall (of a body other than the one box k follows) comes, at any sample of the
- * sweep, within reach of k's buffer bands: its own band, between its buffer box and its box, and
- * its parent's, between its box and its inner box, each grown by the parent's kernel support
- * and spacing. Buffer particles move with the flow interpolated from the other domain and do
- * not see a wall of their own: a moving wall overruns them, and a wall particle they sit on
- * takes a runaway density (measured: cases/tracking_plate2d's block pulled into a box that
- * stood still blew up at t = 0.243 s, a fine wall particle at 1438 kg/m^3 with a buffer particle
- * 0.9 mm from it). Walls that move inside a box's fluid region, or outside the box and its
- * bands, are drawn along their path (moving_walls_in). */
-static void check_moving_walls(plan *p, int k)
-{
-    const pdom *d = &p->d[k];
-    const vres_domain *r = &p->s->dom[0];
-    const double g = 2 * p->d[d->parent].h + 0.5 * p->d[0].dp; /* a root wall particle stands for finer ones
-                                                                     within half its spacing */
-    vres_region reg = d->reg;
-    for (size_t i = 0; i < p->sw.n; i++) {
-        if (d->body >= 0) reg.mot = p->sw.mv[i * p->sw.nbodies + (size_t)d->body];
-        for (size_t q = 0; q < r->n; q++) {
-            const int b = r->type[q] == VRES_MOVING ? vres_track_body(p->s, r->mk[q]) : -1;
-            if (b < 0 || b == d->body) continue;
-            double x[3], y[3];
-            vres_sweep_place(p->s, &p->sw, i, r->type[q], r->mk[q], &r->pos[3 * q], x);
-            const double *z = vres_region_local(&reg, x, y);
-            if (!vres_region_in_box(reg.buff_lo, reg.buff_hi, g, z, p->dim) ||
-                vres_region_in_box(reg.inner_lo, reg.inner_hi, -g, z, p->dim))
-                continue;
-            perr(p, k, "the moving wall mkbound %d comes within %g m (the kernel support) of its buffer bands at "
-                       "t = %g s, at (%g, %g, %g) m: buffer particles follow the flow interpolated from the other "
-                       "domain and do not see a wall; keep a moving wall inside a box's fluid region or away from the "
-                       "box, or let the box follow its body (<tracking mkbound=\"%d\"/>)",
-                 r->mk[q], g, p->sw.tmax * (double)i / (double)(p->sw.n - 1), x[0], x[1], x[2], r->mk[q]);
-            return;
-        }
-    }
-}
-
 /* Along its path a box k that moves or stands in a box that moves stays, with its buffer band,
  * inside its parent's box (in the parent's frame; but where the parent reaches the domain's
  * edge) and out of its siblings' boxes and bands. */
@@ -872,7 +835,6 @@ int vres_partition(vres_store *s, const vres_part_opts *o)
     for (int k = 1; k < p->n && !p->nerr; k++)
         if (p->d[k].body >= 0 || p->d[p->d[k].parent].body >= 0) check_path(p, k);
     for (int k = 1; k < p->n && !p->nerr; k++) check_bodies(p, k);
-    for (int k = 1; k < p->n && !p->nerr && p->sw.n; k++) check_moving_walls(p, k);
     vres_domain *nd = p->nerr ? NULL : build_domains(p);
     if (!nd) {
         vres_sweep_free(&p->sw);

@@ -60,24 +60,6 @@ sed -e 's|<point x="0.5" y="0" z="0.38"/><size x="0.2"|<point x="0.7" y="0" z="0
 expect 0 "a float wholly inside the box is fine" "$P" -q "$T/float_in.h5" -o "$T/float_in_p.h5"
 check "its particles are floating in D1" [ "$(values /Domains/D1/Type "$T/float_in_p.h5" | grep -cx 4)" -gt 0 ]
 
-# a moving wall that comes into a box's buffer bands: cases/tracking_plate2d's block (mkbound 1,
-# x 0.22 to 0.26 m, then 0.07 m along +x by 0.4 s) under a box that stands still from x 0.30 m
-TP=$CASES/tracking_plate2d/tracking_plate2d_Def.xml
-tline=$(grep -n "<bufferbox" "$TP" | head -1 | cut -d: -f1)
-sed -e 's|<point x="0.14" y="0" z="0.07" />|<point x="0.30" y="0" z="0.07" />|' -e 's|<size x="0.2" y="0" z="0.16" />|<size x="0.16" y="0" z="0.16" />|' \
-    -e '/<tracking mkbound="1" \/>/d' "$TP" >"$T/mwall.xml"
-"$BIN/vres-gencase" -q "$T/mwall.xml" -o "$T/mwall.h5"
-refuse "a moving wall coming into a box's bands" \
-    "bufferbox 1 \(line $tline\): the moving wall mkbound 1 comes within 0.0665685 m \(the kernel support\) of its buffer bands at t = 0 s.*<tracking mkbound=\"1\"/>" \
-    "$T/mwall.h5"
-# the same block inside a box's fluid region (the box from the floor to above the surface, x 0.06
-# to 0.58 m) is fine: the box's domain has the block's particles at its dp (4 x 6), moving with it
-sed -e 's|<point x="0.30" y="0" z="0.07" />|<point x="0.06" y="0" z="-0.1" />|' -e 's|<size x="0.16" y="0" z="0.16" />|<size x="0.52" y="0" z="0.6" />|' \
-    "$T/mwall.xml" >"$T/mwall_in.xml"
-"$BIN/vres-gencase" -q "$T/mwall_in.xml" -o "$T/mwall_in.h5"
-expect 0 "a moving wall inside a box's fluid region is fine" "$P" -q "$T/mwall_in.h5" -o "$T/mwall_in_p.h5"
-check "its 24 particles are in D1, moving" [ "$(values /Domains/D1/Type "$T/mwall_in_p.h5" | grep -cx 3)" -eq 24 ]
-
 # stores vres-gencase cannot write: Verlet or the cubic spline with a box, corrupt /Interfaces
 if VRES_TEST_BAD_STORES=$T "$ROOT/$VRES_BUILD/tests/test_partition" >/dev/null 2>&1; then
     refuse "Verlet" "bufferbox 1 \(line $line\): variable resolution needs StepAlgorithm=2 \(Symplectic\); the store has 1 \(Verlet\)" "$T/verlet.h5"
