@@ -263,7 +263,8 @@ VRES_HD static inline int vres_sph_walls_meet(const int walls, int ta, int tb)
  * still water with a box across a DBC floor ran at 1 to 2.5 m/s, 0.02 to 0.04 m/s without them,
  * as the single-resolution runs; tests/vres-run/test_vres_dbc.sh); with walls VRES_WALLS_FLOATING a floating body's particle
  * also sums, into ace (gravity left out: its body carries it), the pressure and viscous terms
- * of its fluid and non-floating wall neighbours (with the walls' viscosity, as they see it), and
+ * of its fluid (buffer included) and non-floating wall neighbours (with the walls' viscosity, as
+ * they see it; its density rate, as a wall's, leaves buffer particles out), and
  * floating and non-floating walls add each other to their density rates (vres_sph_walls_meet),
  * so that a body resting on a floor is held by DBC's pressure; for a buffer particle all three zero (its state is the
  * coupling's), while it enters its neighbours' sums as fluid (vres_type_acts_fluid). Positions, velocities, densities, pressures, masses and types
@@ -315,7 +316,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
             double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
             double dv[3] = {va[0] - vel[3 * b], va[1] - vel[3 * b + 1], va[2] - vel[3 * b + 2]};
             double mb = mass[b], rhob = rho[b], inv_r2eta = 1.0 / (r2 + C.eta2);
-            arp += mb * (dv[0] * fr[0] + dv[1] * fr[1] + dv[2] * fr[2]);
+            /* a floating body's density leaves buffer particles out too (its force takes them) */
+            if (!float_a || !vres_type_is_buffer(type[b])) arp += mb * (dv[0] * fr[0] + dv[1] * fr[1] + dv[2] * fr[2]);
             if (!fluid_a && !float_a) {
                 double rate = (dx[0] * dv[0] + dx[1] * dv[1] + dx[2] * dv[2]) * inv_r2eta;
                 vmax = rate > vmax ? rate : vmax;
@@ -640,6 +642,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
         double pb[VRES_SPH_LIST];                    /* b's pressure (Pa) */
         double wall[VRES_SPH_LIST];                  /* 1 for a wall b, else 0 (set when walls) */
         double visc[VRES_SPH_LIST];                  /* the pair's Visco: visc_fluid or visc_wall (set when walls) */
+        uint8_t buf[VRES_SPH_LIST];                  /* 1 for a buffer b (set for a floating a) */
     } Q;
     struct { /* each kept pair's terms of a's sums */
         double arp[VRES_SPH_LIST];  /* continuity m_b v_ab . grad_a W_ab (kg/m^3/s) */
@@ -690,6 +693,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
             Q.vx[np] = P->vx[b], Q.vz[np] = P->vz[b], Q.mb[np] = P->mass[b];
             Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
             if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b || float_a ? visc_wall : visc_fluid;
+            if (float_a) Q.buf[np] = (uint8_t)vres_type_is_buffer(P->type[b]);
             if (shift && wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(P->type[b]))))
                 noshift = 1;
             np += (fluid_a || !wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b])) &&
@@ -749,7 +753,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
         /* 5: the sums, in pair order (a wall particle a sums only its density rate, a floating
            one its acceleration too, without density diffusion) */
         for (int j = 0; j < np; j++) {
-            arp += T.arp[j];
+            if (!float_a || !Q.buf[j]) arp += T.arp[j]; /* a floating body's density: no buffer */
             vmax = T.rate[j] > vmax ? T.rate[j] : vmax;
         }
         if (fluid_a || float_a)

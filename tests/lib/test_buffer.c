@@ -205,6 +205,69 @@ START_TEST(interaction_feels_buffer_as_fluid)
 }
 END_TEST
 
+/* A floating body's particle (DBC density, summed force) next to the buffer particle, through
+ * the general loops with walls VRES_WALLS_FLOATING (3D and 2D): its force takes the buffer as the
+ * fluid particle it would be (the same ace, bit for bit), its density rate leaves it out as a
+ * fixed wall's does (the same ar as with that particle fluid but massless, which adds nothing to
+ * it), and as fluid with its mass it would have counted (some floating particle's ar differs). */
+START_TEST(floating_density_leaves_buffer_out)
+{
+    static const int types[3] = {VRES_BUFFER, VRES_FLUID, VRES_FLUID};
+    vres_store *s[3];
+    vres_cells g[3];
+    uint64_t jid = 0;
+    const run_cfg c = config();
+    const run_dom dc = domain(0, 0);
+    const vres_sph_consts C = vres_run_consts(&c, &dc);
+    for (int t = 0; t < 3; t++) {
+        s[t] = sorted_block(types[t], &jid, &c, &dc, &g[t]);
+        vres_domain *d = &s[t]->dom[0];
+        for (size_t i = 0; i < d->n; i++)
+            if (d->type[i] == VRES_FIXED) d->type[i] = VRES_FLOATING; /* the wall rows: one body */
+        if (t == 2) d->mass_p[slot_of(d, jid)] = 0; /* the massless fluid neighbour */
+    }
+    const vres_domain *d = &s[0]->dom[0];
+    const size_t n = d->n;
+    for (int k = 0; k < 2; k++) {
+        rates r[3];
+        for (int t = 0; t < 3; t++) {
+            vres_domain *e = &s[t]->dom[0];
+            r[t] = (rates){calloc(3 * n, sizeof(double)), calloc(n, sizeof(double)), calloc(n, sizeof(double))};
+            if (k == 0) {
+                vres_sph_general_cpu(n, &g[t], e->pos, e->vel, e->rho, e->press, e->mass_p, e->type, C, r[t].ace,
+                                     r[t].ar, r[t].visc, NULL, VRES_DDT_MOLTENI, VRES_WALLS_FLOATING,
+                                     VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
+            } else {
+                double *x = malloc(2 * n * sizeof *x), *ir = malloc(n * sizeof *ir);
+                float *v = malloc(2 * n * sizeof *v);
+                for (size_t i = 0; i < n; i++)
+                    x[i] = e->pos[3 * i], x[n + i] = e->pos[3 * i + 2], v[i] = e->vel[3 * i],
+                    v[n + i] = e->vel[3 * i + 2], ir[i] = 1.0 / e->rho[i];
+                vres_sph_2d P = {x, x + n, v, v + n, e->rho, e->press, ir, e->mass_p, e->type};
+                vres_sph2d_general_cpu(g[t].ncells + 1, &g[t], &P, &C, r[t].ace, r[t].ar, r[t].visc, NULL,
+                                       VRES_DDT_MOLTENI, VRES_WALLS_FLOATING, VRES_VISC_ARTIFICIAL,
+                                       VRES_KERNEL_WENDLAND, 0);
+                free(x), free(ir), free(v);
+            }
+        }
+        size_t floats = 0, counted = 0, pushed = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (d->type[i] != VRES_FLOATING) continue;
+            floats++;
+            for (int q = 0; q < 3; q++) ck_assert(r[0].ace[3 * i + q] == r[1].ace[3 * i + q]);
+            ck_assert(r[0].ar[i] == r[2].ar[i]);
+            counted += r[1].ar[i] != r[2].ar[i];
+            pushed += r[1].ace[3 * i + 2] != r[2].ace[3 * i + 2];
+        }
+        ck_assert_msg(floats > 0 && counted > 0 && pushed > 0,
+                      "loop %d: %zu floating particles, %zu would count it in their density, %zu feel its push", k,
+                      floats, counted, pushed);
+        for (int t = 0; t < 3; t++) free(r[t].ace), free(r[t].ar), free(r[t].visc);
+    }
+    for (int t = 0; t < 3; t++) vres_cells_free(&g[t]), vres_store_free(s[t]);
+}
+END_TEST
+
 /* With shifting (every variant that sums grad C and div r: 3D, 2D, general loops), the buffer
  * particle gets the very shifting sums (bit for bit) it gets as fluid, and every other particle
  * the sums it gets beside fluid, while its rates stay discarded: buffers are shifted like fluid
@@ -406,6 +469,7 @@ int main(void)
     tcase_add_test(tc, buffer_gets_fluid_shifting_sums);
     tcase_add_test(tc, buffer_shifting_loses_its_normal_component);
     tcase_add_test(tc, fluid_moves_as_next_to_fluid);
+    tcase_add_test(tc, floating_density_leaves_buffer_out);
     suite_add_tcase(s, tc);
     return vres_check_run(s);
 }
