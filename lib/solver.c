@@ -503,7 +503,7 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     }
     if (o->threads > 0) omp_set_num_threads(o->threads);
     c.threads = omp_get_max_threads();
-    if (vres_run_prepare_dir(o->rundir, o->restart, s->step, r.next_snap) != 0 ||
+    if (vres_run_prepare_dir(o->rundir, o->restart, s->step, r.next_snap, o->restart_from) != 0 ||
         open_backends(s, &set, &c, dev) != 0) {
         free_set(&set, 0);
         return VRES_RUN_FAIL;

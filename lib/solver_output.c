@@ -447,12 +447,20 @@ static int truncate_table(const char *path, int col, long step)
 }
 
 /* Remove from run directory dir (run.tsv at tsv) what a restart from the state at step `step`
- * with next snapshot number next_snap rewrites: the later snapshots, highest first, then the
- * later lines of the tables, then snap_last_good.h5. In that order a restart killed half-way
- * leaves the snapshots numbered without a gap, each with its table lines. 0, or -1 after
- * printing why. */
-static int trim_for_restart(const char *dir, const char *tsv, long step, int next_snap)
+ * with next snapshot number next_snap rewrites: checkpoint.h5 unless it is the restart's own
+ * file `from` (it may be ahead of the restart's state: a later restart from it, after this one
+ * was killed while removing snapshots, would leave a gap in them; found by
+ * tests/vres-run/test_crash_kill.sh, snapshots 0..7 and 20), the later snapshots, highest
+ * first, then the later lines of the tables, then snap_last_good.h5. In that order a restart
+ * killed half-way leaves the snapshots numbered without a gap, each with its table lines. 0, or
+ * -1 after printing why. */
+static int trim_for_restart(const char *dir, const char *tsv, long step, int next_snap, const char *from)
 {
+    char *ck = vres_xasprintf("%s/checkpoint.h5", dir);
+    struct stat a, b;
+    const int own = from && stat(ck, &a) == 0 && stat(from, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+    if (!own && unlink(ck) == 0) vres_info("removed %s (the restart writes its own)", ck);
+    free(ck);
     int last = next_snap - 1;
     for (;; last++) { /* the later snapshots: next_snap .. last */
         char *snap = vres_xasprintf("%s/snap_%05d.h5", dir, last + 1);
@@ -482,10 +490,11 @@ static int trim_for_restart(const char *dir, const char *tsv, long step, int nex
 
 /* Make the run directory (and parents) and check it can take the run: a new run needs one
  * without run.tsv; a restart from the state at step `step` with next snapshot number
- * next_snap keeps what came before and removes what the restart rewrites (later snapshots,
- * run.tsv and excluded.tsv lines, snap_last_good.h5). 0, or -1 after printing why. Nothing is
- * created or removed when the path cannot be a run directory. */
-int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap)
+ * next_snap (read from the file `from`) keeps what came before and removes what the restart
+ * rewrites (checkpoint.h5 but from itself, later snapshots, run.tsv and excluded.tsv lines,
+ * snap_last_good.h5). 0, or -1 after printing why. Nothing is created or removed when the path
+ * cannot be a run directory. */
+int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap, const char *from)
 {
     struct stat st;
     if (stat(dir, &st) != 0) return vres_mkdirs(dir);
@@ -507,7 +516,7 @@ int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap)
     }
     int rc = 0, swept = vres_out_sweep(dir);
     if (swept) vres_info("removed %d temporary file%s that a killed run left in %s", swept, swept == 1 ? "" : "s", dir);
-    if (restart) rc = trim_for_restart(dir, tsv, step, next_snap);
+    if (restart) rc = trim_for_restart(dir, tsv, step, next_snap, from);
     free(tsv);
     return rc;
 }

@@ -129,10 +129,11 @@ int vres_run_after_step(vres_store *s, run_set *set, const run_cfg *c, run_resum
 
 /* Make the run directory (and parents) and check it can take the run: a new run needs one
  * without run.tsv; a restart from the state at step `step` with next snapshot number
- * next_snap keeps what came before and removes what the restart rewrites (later snapshots,
- * run.tsv and excluded.tsv lines, snap_last_good.h5). 0, or -1 after printing why. Nothing is
- * created or removed when the path cannot be a run directory. */
-int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap);
+ * next_snap, read from the file `from`, keeps what came before and removes what the restart
+ * rewrites (checkpoint.h5 unless it is `from`, later snapshots, run.tsv and excluded.tsv lines,
+ * snap_last_good.h5). 0, or -1 after printing why. Nothing is created or removed when the path
+ * cannot be a run directory. */
+int vres_run_prepare_dir(const char *dir, int restart, long step, int next_snap, const char *from);
 
 /* What a restart reads from its snapshot into r: 0, or -1 after printing why (not a
  * snapshot of vres-run, or nothing left to run). */

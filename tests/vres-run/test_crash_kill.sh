@@ -116,6 +116,12 @@ newest=$(find "$R" -name 'snap_*.h5' | sort | tail -1)
 [ -n "$newest" ] || newest=none
 if [ "$(basename "$newest")" != "$last" ]; then
     expect 0 "restart from the newest snapshot ($(basename "$newest")) to the end" "$RUN" -q "${opts[@]}" --restart "$newest"
+elif compgen -G "$R/.*.tmp.*" >/dev/null; then
+    # the last kill came after the last snapshot (while checkpoint.h5 was written): the run is
+    # whole, and the next restart in the directory sweeps the temporary file; make one
+    prev=$(printf '%s/snap_%05d.h5' "$R" $((nref - 2)))
+    expect 0 "restart from $(basename "$prev") to the end (a killed run's temporary file after the last snapshot)" \
+        "$RUN" -q "${opts[@]}" --restart "$prev"
 fi
 n=0 nsame=0
 for f in "$T"/ref/snap_*.h5; do
