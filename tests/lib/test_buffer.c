@@ -137,8 +137,9 @@ typedef struct rates {
 } rates;
 
 /* The rates of d (sorted by g) with loop kind k: 0 the 3D DBC variant, 1 the 2D DBC variant,
- * 2 the 3D general loop, 3 the 2D general loop. */
-static rates interact(int k, vres_domain *d, const vres_cells *g, const vres_sph_consts *C)
+ * 2 the 3D general loop, 3 the 2D general loop, the general loops with walls a VRES_WALLS_*
+ * kind. */
+static rates interact_walls(int k, vres_domain *d, const vres_cells *g, const vres_sph_consts *C, int walls)
 {
     size_t n = d->n;
     rates r = {calloc(3 * n, sizeof(double)), calloc(n, sizeof(double)), calloc(n, sizeof(double))};
@@ -153,12 +154,28 @@ static rates interact(int k, vres_domain *d, const vres_cells *g, const vres_sph
     else if (k == 1) vres_sph2d_dbc_molteni_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL);
     else if (k == 2)
         vres_sph_general_cpu(n, g, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, r.ace, r.ar, r.visc, NULL,
-                             VRES_DDT_MOLTENI, 1, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
+                             VRES_DDT_MOLTENI, walls, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
     else
-        vres_sph2d_general_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL, VRES_DDT_MOLTENI, 1,
+        vres_sph2d_general_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL, VRES_DDT_MOLTENI, walls,
                                VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
     free(x), free(ir), free(v);
     return r;
+}
+
+/* interact_walls with DBC walls. */
+static rates interact(int k, vres_domain *d, const vres_cells *g, const vres_sph_consts *C)
+{
+    return interact_walls(k, d, g, C, VRES_WALLS_DBC);
+}
+
+/* Three sorted blocks s[t] (cells g[t]) with the particle jid of type types[t]; the
+ * interaction's constants. */
+static vres_sph_consts three_blocks(const int types[3], vres_store *s[3], vres_cells g[3], uint64_t *jid)
+{
+    const run_cfg c = config();
+    const run_dom dc = domain(0, 0);
+    for (int t = 0; t < 3; t++) s[t] = sorted_block(types[t], jid, &c, &dc, &g[t]);
+    return vres_run_consts(&c, &dc);
 }
 
 START_TEST(interaction_feels_buffer_as_fluid)
@@ -167,10 +184,7 @@ START_TEST(interaction_feels_buffer_as_fluid)
     vres_store *s[3];
     vres_cells g[3];
     uint64_t jid = 0;
-    const run_cfg c = config();
-    const run_dom dc = domain(0, 0);
-    const vres_sph_consts C = vres_run_consts(&c, &dc);
-    for (int t = 0; t < 3; t++) s[t] = sorted_block(types[t], &jid, &c, &dc, &g[t]);
+    const vres_sph_consts C = three_blocks(types, s, g, &jid);
     const vres_domain *d = &s[0]->dom[0];
     size_t n = d->n, j = slot_of(d, jid);
     for (int k = 0; k < 4; k++) {
@@ -216,11 +230,8 @@ START_TEST(floating_density_leaves_buffer_out)
     vres_store *s[3];
     vres_cells g[3];
     uint64_t jid = 0;
-    const run_cfg c = config();
-    const run_dom dc = domain(0, 0);
-    const vres_sph_consts C = vres_run_consts(&c, &dc);
+    const vres_sph_consts C = three_blocks(types, s, g, &jid);
     for (int t = 0; t < 3; t++) {
-        s[t] = sorted_block(types[t], &jid, &c, &dc, &g[t]);
         vres_domain *d = &s[t]->dom[0];
         for (size_t i = 0; i < d->n; i++)
             if (d->type[i] == VRES_FIXED) d->type[i] = VRES_FLOATING; /* the wall rows: one body */
@@ -230,26 +241,7 @@ START_TEST(floating_density_leaves_buffer_out)
     const size_t n = d->n;
     for (int k = 0; k < 2; k++) {
         rates r[3];
-        for (int t = 0; t < 3; t++) {
-            vres_domain *e = &s[t]->dom[0];
-            r[t] = (rates){calloc(3 * n, sizeof(double)), calloc(n, sizeof(double)), calloc(n, sizeof(double))};
-            if (k == 0) {
-                vres_sph_general_cpu(n, &g[t], e->pos, e->vel, e->rho, e->press, e->mass_p, e->type, C, r[t].ace,
-                                     r[t].ar, r[t].visc, NULL, VRES_DDT_MOLTENI, VRES_WALLS_FLOATING,
-                                     VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
-            } else {
-                double *x = malloc(2 * n * sizeof *x), *ir = malloc(n * sizeof *ir);
-                float *v = malloc(2 * n * sizeof *v);
-                for (size_t i = 0; i < n; i++)
-                    x[i] = e->pos[3 * i], x[n + i] = e->pos[3 * i + 2], v[i] = e->vel[3 * i],
-                    v[n + i] = e->vel[3 * i + 2], ir[i] = 1.0 / e->rho[i];
-                vres_sph_2d P = {x, x + n, v, v + n, e->rho, e->press, ir, e->mass_p, e->type};
-                vres_sph2d_general_cpu(g[t].ncells + 1, &g[t], &P, &C, r[t].ace, r[t].ar, r[t].visc, NULL,
-                                       VRES_DDT_MOLTENI, VRES_WALLS_FLOATING, VRES_VISC_ARTIFICIAL,
-                                       VRES_KERNEL_WENDLAND, 0);
-                free(x), free(ir), free(v);
-            }
-        }
+        for (int t = 0; t < 3; t++) r[t] = interact_walls(2 + k, &s[t]->dom[0], &g[t], &C, VRES_WALLS_FLOATING);
         size_t floats = 0, counted = 0, pushed = 0;
         for (size_t i = 0; i < n; i++) {
             if (d->type[i] != VRES_FLOATING) continue;
