@@ -185,17 +185,17 @@ VRES_HD static inline int vres_couple_flux_gate(const vres_liu_result *r, int di
  * free-surface gate cuts a thin layer and on the interpolation near the donor's region's edge:
  * on cases/dambreak2d (root dp 0.01 m, overlappingh 2) it created 1.9% more mass in the box by
  * t = 1 s than the root's particles brought across the segments (vres-run(1)). */
-VRES_HD static inline double vres_couple_crossing(const vres_donor *D, const double c[3], const double n[3],
-                                                  double area, const double vbox[3], double dt)
+/* That count for the segment X (vres_cross_init) over donor D's fluid, piece by piece
+ * (X's piece is left at the last). */
+VRES_HD static inline double vres_couple_cross_sum(const vres_donor *D, vres_cross *X)
 {
-    vres_cross X;
     const int dim = D->cells.dim;
-    vres_cross_init(&X, D->pos, D->pos0, c, n, area, vbox, dt, D->dp, D->o.k.h, D->cells.period, dim);
+    const double *c = X->c;
     double m = 0;
-    for (int p1 = 0; p1 < X.np; p1++)
-        for (int p2 = 0; p2 < (dim == 2 ? 1 : X.np); p2++) {
+    for (int p1 = 0; p1 < X->np; p1++)
+        for (int p2 = 0; p2 < (dim == 2 ? 1 : X->np); p2++) {
             double x[3];
-            vres_cross_piece(&X, p1, p2, x);
+            vres_cross_piece(X, p1, p2, x);
             vres_cell_range nb[27];
             const int nc = vres_cells_neighbours(&D->cells, x, nb);
             for (int q = 0; q < nc; q++)
@@ -204,10 +204,19 @@ VRES_HD static inline double vres_couple_crossing(const vres_donor *D, const dou
                     double d[3];
                     for (int a = 0; a < 3; a++) d[a] = D->pos[3 * b + a] + nb[q].shift[a] - c[a];
                     if (dim == 2) d[1] = 0;
-                    m += vres_cross_term(&X, b, d, D->mass[b]);
+                    m += vres_cross_term(X, b, d, D->mass[b]);
                 }
         }
     return m;
+}
+
+/* The same for the segment of centre c, unit normal n, area and velocity vbox over dt (as above). */
+VRES_HD static inline double vres_couple_crossing(const vres_donor *D, const double c[3], const double n[3],
+                                                  double area, const double vbox[3], double dt)
+{
+    vres_cross X;
+    vres_cross_init(&X, D->pos, D->pos0, c, n, area, vbox, dt, D->dp, D->o.k.h, D->cells.period, D->cells.dim);
+    return vres_couple_cross_sum(D, &X);
 }
 
 /* The position (m) of the particle a segment at p with normal n creates: dp/2 inside the band. */
@@ -276,7 +285,7 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
     const int fused = cross && X.np == 1;
     vres_liu_result r = vres_liu_at_x(&D->cells, vres_couple_opts(D, dp), D->pos, D->vel, D->rho, D->mass, D->type, p,
                                       fused ? &X : NULL);
-    const double crossed = !cross ? 0.0 : fused ? X.m : vres_couple_crossing(D, p, n, S.area[s], &S.vbox[3 * s], dt);
+    const double crossed = !cross ? 0.0 : fused ? X.m : vres_couple_cross_sum(D, &X);
     S.rho[s] = (float)r.rho;
     for (int a = 0; a < 3; a++) S.vel[3 * s + a] = (float)r.v[a];
     const double dpmin = dp < D->dp ? dp : D->dp;
