@@ -1,6 +1,6 @@
 /* cells.h (kernels/) - the cell-linked list as the per-particle physics reads it, written once
  * for the CPU and CUDA (see device.h): the list's struct, a particle's cell and its key (what
- * both backends sort by), its neighbour cells (with their periodic shifts), the 2D row ranges
+ * both backends sort by), its neighbour cells (with their periodic shifts), the row ranges
  * of a cell, the pair count, and the periodic wrap of a position. How a list is built (the box, the sort by cell, the
  * gathers that make memory follow the cells) is the host's: lib/cells.h, which includes this.
  *
@@ -154,15 +154,17 @@ VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const doubl
     return m;
 }
 
-/* The neighbour ranges of 2D cell (i, k) (x index i, z index k), for every particle in it:
- * for each of the rows k-1, k, k+1 the cells i-1, i, i+1, with the cells of a row that lie
- * side by side in memory (no periodic wrap between them) merged into one range, so a row is
- * one contiguous run of slots. Ranges come in the order vres_cells_neighbours gives their
- * cells (so sums over them add in the same order); empty cells are left out. Returns how
- * many, at most 9, into r. Only for dim 2 and a cell inside the grid. */
-VRES_HD static inline int vres_cells_rows2d(const vres_cells *g, int i, int k, vres_cell_range r[9])
+/* The neighbour ranges of cell (i, j, k) (x, y, z indices; j = 0 in 2D), for every particle in
+ * it: for each row of cells along x around it (z outermost, then y; 3 rows in 2D, 9 in 3D) the
+ * cells i-1, i, i+1, with neighbouring ranges that lie side by side in memory with the same
+ * periodic image merged into one, so a row is one contiguous run of slots. Ranges come in the
+ * order vres_cells_neighbours gives their cells (so sums over them add in the same order);
+ * empty cells are left out. Returns how many, at most 9 (2D) or 27 (3D), into r. Only for a
+ * cell inside the grid. */
+VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int k, vres_cell_range r[27])
 {
-    int m = 0, nx = g->nc[0], nz = g->nc[2];
+    const int nx = g->nc[0], ny = g->nc[1], nz = g->nc[2], dy = g->dim == 2 ? 0 : 1;
+    int m = 0;
     for (int oz = -1; oz <= 1; oz++) {
         int kz = k + oz;
         double sz = 0;
@@ -171,30 +173,47 @@ VRES_HD static inline int vres_cells_rows2d(const vres_cells *g, int i, int k, v
             sz = kz < 0 ? -g->period[2] : g->period[2];
             kz = kz < 0 ? kz + nz : kz - nz;
         }
-        const size_t *row = g->begin + (size_t)kz * (size_t)nx;
-        for (int ox = -1; ox <= 1; ox++) {
-            int kx = i + ox;
-            double sx = 0;
-            if (kx < 0 || kx >= nx) {
-                if (!g->periodic[0]) continue;
-                sx = kx < 0 ? -g->period[0] : g->period[0];
-                kx = kx < 0 ? kx + nx : kx - nx;
+        for (int oy = -dy; oy <= dy; oy++) {
+            int ky = j + oy;
+            double sy = 0;
+            if (ky < 0 || ky >= ny) {
+                if (!g->periodic[1]) continue;
+                sy = ky < 0 ? -g->period[1] : g->period[1];
+                ky = ky < 0 ? ky + ny : ky - ny;
             }
-            size_t b = row[kx], e = row[kx + 1];
-            if (b == e) continue;
-            if (m && r[m - 1].end == b && r[m - 1].shift[0] == sx && r[m - 1].shift[2] == sz) {
-                r[m - 1].end = e; /* the next slots in memory, same image: one range */
-                continue;
+            const size_t *row = g->begin + ((size_t)kz * (size_t)ny + (size_t)ky) * (size_t)nx;
+            for (int ox = -1; ox <= 1; ox++) {
+                int kx = i + ox;
+                double sx = 0;
+                if (kx < 0 || kx >= nx) {
+                    if (!g->periodic[0]) continue;
+                    sx = kx < 0 ? -g->period[0] : g->period[0];
+                    kx = kx < 0 ? kx + nx : kx - nx;
+                }
+                size_t b = row[kx], e = row[kx + 1];
+                if (b == e) continue;
+                if (m && r[m - 1].end == b && r[m - 1].shift[0] == sx && r[m - 1].shift[1] == sy &&
+                    r[m - 1].shift[2] == sz) {
+                    r[m - 1].end = e; /* the next slots in memory, same image: one range */
+                    continue;
+                }
+                r[m].begin = b;
+                r[m].end = e;
+                r[m].shift[0] = sx;
+                r[m].shift[1] = sy;
+                r[m].shift[2] = sz;
+                m++;
             }
-            r[m].begin = b;
-            r[m].end = e;
-            r[m].shift[0] = sx;
-            r[m].shift[1] = 0;
-            r[m].shift[2] = sz;
-            m++;
         }
     }
     return m;
+}
+
+/* vres_cells_rows of the cell of index `cell` (< ncells). */
+VRES_HD static inline int vres_cells_rows_of(const vres_cells *g, size_t cell, vres_cell_range r[27])
+{
+    const size_t nx = (size_t)g->nc[0], nxy = nx * (size_t)g->nc[1];
+    return vres_cells_rows(g, (int)(cell % nx), (int)(cell % nxy / nx), (int)(cell / nxy), r);
 }
 
 /* How many particles b != a lie within sqrt(r2max) (m) of particle a (images across periodic

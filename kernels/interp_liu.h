@@ -257,7 +257,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU
 /* vres_liu_gather's body for N unknowns in dimension DIM, both compile-time constants where
  * vres_liu_gather calls it (so the loops over the matrix unroll), the sums kept in locals (not
  * behind s, which the compiler would have to assume aliases the donors' positions). As
- * kernels/sph.h's vres_sph_interact2d, each pass over up to VRES_LIU_LIST candidates
+ * kernels/sph.h's vres_sph_interact_v, each pass over up to VRES_LIU_LIST candidates
  *   1. computes their offsets and distances (vector instructions over a run of slots);
  *   2. keeps the candidates inside the support, then of those the donor fluid and walls, without a
  *      branch;
@@ -280,10 +280,9 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
 {
     vres_cell_range nb[27];
     int m, cx[3];
-    /* 2D: a row's three cells side by side in memory are one range (the same slots in the same
-       order as vres_cells_neighbours gives them) */
-    if (DIM == 2) m = vres_cells_locate(g, x, cx) ? vres_cells_rows2d(g, cx[0], cx[2], nb) : 0;
-    else m = vres_cells_neighbours(g, x, nb);
+    /* a row's three cells side by side in memory are one range (the same slots in the same order
+       as vres_cells_neighbours gives them) */
+    m = vres_cells_locate(g, x, cx) ? vres_cells_rows(g, cx[0], cx[1], cx[2], nb) : 0;
     const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
     const vres_wendland k = o.k;

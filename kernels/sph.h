@@ -534,37 +534,71 @@ VRES_SPH_VARIANTS(vres_sph_cubic_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC)
 VRES_SPH_SHIFT_VARIANTS(vres_sph_cubic_shift_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_CUBIC) /* vres_sph_cubic_shift_... */
 VRES_SPH_SHIFT_VARIANTS(vres_sph_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC)
 
-/* The 2D interaction (x-z plane) reads these arrays, all in cell order (slot s is particle
- * s): the positions and velocities split by axis so that the neighbour loop streams only what
- * it uses (no y), and the reciprocal density computed once per particle, not once per pair. */
-typedef struct vres_sph_2d {
+/* The cell-wise interaction (vres_sph_interact_v) reads these arrays, all in cell order (slot s
+ * is particle s). The positions split by axis (vres_sph_split_cpu; x, z in 2D, y NULL there), so
+ * that the neighbour loop's distance pass streams whole vectors of one coordinate (in 3D that
+ * split made the loop 14% faster than reading the interleaved positions, for 24 bytes per
+ * particle). The velocities, read only for the kept neighbours: split too in 2D (element b at
+ * [b]), the domain's own interleaved array in 3D (vx = vel, vy = vel + 1, vz = vel + 2, element b
+ * at [3 b]: VRES_SPH_VSTRIDE). The reciprocal density computed once per particle, not once per
+ * pair. */
+typedef struct vres_sph_arrays {
     const double *x;       /* [n] x positions (m) */
+    const double *y;       /* [n] y positions (m); NULL in 2D */
     const double *z;       /* [n] z positions (m) */
-    const float *vx;       /* [n] x velocities (m/s) */
-    const float *vz;       /* [n] z velocities (m/s) */
+    const float *vx;       /* x velocities (m/s), element b at [b VRES_SPH_VSTRIDE(dim)] */
+    const float *vy;       /* y velocities (m/s), the same; NULL in 2D */
+    const float *vz;       /* z velocities (m/s), the same */
     const float *rho;      /* [n] densities (kg/m^3) */
     const float *press;    /* [n] pressures (Pa) */
     const double *inv_rho; /* [n] 1/rho, exactly 1.0 / (double)rho (m^3/kg) */
     const double *mass;    /* [n] masses (kg) */
     const uint8_t *type;   /* [n] particle types (kernels/ptype.h) */
-} vres_sph_2d;
+} vres_sph_arrays;
 
-/* The 2D interaction's split arrays of particle i of n (vres_sph_2d): x then z positions into
- * x2d [2n] (m), x then z velocities into v2d [2n] (m/s), and 1 / rho into inv_rho [n] (m^3/kg). */
-VRES_HD static inline void vres_sph_split2d_one(size_t i, size_t n, const double *pos, const float *vel,
-                                                const float *rho, double *x2d, float *v2d, double *inv_rho)
+/* The distance between consecutive elements of vres_sph_arrays' velocities in dimension dim: 1
+ * (2D, split) or 3 (3D, interleaved). */
+#define VRES_SPH_VSTRIDE(dim) ((dim) == 2 ? 1 : 3)
+
+/* The cell-wise interaction's arrays of particle i of n (vres_sph_arrays): the positions split
+ * by axis into xs (2D: x then z, [2n]; 3D: x, y, z, [3n]) (m), in 2D the x then z velocities
+ * into v2d [2n] (m/s; unused in 3D), and 1 / rho into inv_rho [n] (m^3/kg). */
+VRES_HD static inline void vres_sph_split_one(size_t i, size_t n, int dim, const double *pos, const float *vel,
+                                              const float *rho, double *xs, float *v2d, double *inv_rho)
 {
-    x2d[i] = pos[3 * i], x2d[n + i] = pos[3 * i + 2];
-    v2d[i] = vel[3 * i], v2d[n + i] = vel[3 * i + 2];
+    if (dim == 2) {
+        xs[i] = pos[3 * i], xs[n + i] = pos[3 * i + 2];
+        v2d[i] = vel[3 * i], v2d[n + i] = vel[3 * i + 2];
+    } else xs[i] = pos[3 * i], xs[n + i] = pos[3 * i + 1], xs[2 * n + i] = pos[3 * i + 2];
     inv_rho[i] = 1.0 / rho[i];
 }
 
-/* vres_sph_split2d_cpu / _cuda (n, np, pos, vel, rho, x2d, v2d, inv_rho): np is the count the
- * arrays are split by (the n of vres_sph_split2d_one). */
-VRES_PARTICLE_LOOP(vres_sph_split2d, vres_sph_split2d_one,
-                   (size_t np, const double *pos, const float *vel, const float *rho, double *x2d, float *v2d,
-                    double *inv_rho),
-                   (np, pos, vel, rho, x2d, v2d, inv_rho))
+/* vres_sph_split_cpu / _cuda (n, np, dim, pos, vel, rho, xs, v2d, inv_rho): np is the count the
+ * arrays are split by (the n of vres_sph_split_one). */
+VRES_PARTICLE_LOOP(vres_sph_split, vres_sph_split_one,
+                   (size_t np, int dim, const double *pos, const float *vel, const float *rho, double *xs,
+                    float *v2d, double *inv_rho),
+                   (np, dim, pos, vel, rho, xs, v2d, inv_rho))
+
+/* The arrays vres_sph_interact_v reads for a domain of n particles in dimension dim: the split
+ * positions xs (vres_sph_split_one), the 2D split velocities v2d [2n] or, in 3D, the interleaved
+ * vel [3n]; rho, press, inv_rho, mass and type [n] (units as vres_sph_arrays). */
+VRES_HD static inline vres_sph_arrays vres_sph_arrays_make(size_t n, int dim, const double *xs, const float *vel,
+                                                           const float *v2d, const float *rho, const float *press,
+                                                           const double *inv_rho, const double *mass,
+                                                           const uint8_t *type)
+{
+    vres_sph_arrays P;
+    if (dim == 2) {
+        P.x = xs, P.y = NULL, P.z = xs + n;
+        P.vx = v2d, P.vy = NULL, P.vz = v2d + n;
+    } else {
+        P.x = xs, P.y = xs + n, P.z = xs + 2 * n;
+        P.vx = vel, P.vy = vel + 1, P.vz = vel + 2;
+    }
+    P.rho = rho, P.press = press, P.inv_rho = inv_rho, P.mass = mass, P.type = type;
+    return P;
+}
 
 /* |a|^2 of particle i (m^2/s^4) for the time step: its acceleration's for a fluid particle,
  * 0 for the others (walls have none, buffer particles' are discarded). */
@@ -574,7 +608,7 @@ VRES_HD static inline double vres_sph_accel2(size_t i, const uint8_t *type, cons
     return vres_type_is_fluid(type[i]) ? a[0] * a[0] + a[1] * a[1] + a[2] * a[2] : 0.0;
 }
 
-/* Candidates a 2D particle looks at per pass over its neighbour ranges (more are done in turns).
+/* Candidates a particle looks at per pass over its neighbour ranges (more are done in turns).
  * On a GPU each thread holds its pass's arrays in slow local memory, so its passes are short. */
 #ifdef __CUDA_ARCH__
 #define VRES_SPH_LIST 16
@@ -582,38 +616,42 @@ VRES_HD static inline double vres_sph_accel2(size_t i, const uint8_t *type, cons
 #define VRES_SPH_LIST 128
 #endif
 
-/* vres_sph_interact for a 2D domain (x-z plane, y ignored: in 2D every y offset and y
- * velocity difference is zero, so the sums below are those of vres_sph_interact term for
- * term, in the same order, and give the same numbers). Particle a's neighbours lie in the
- * ranges nb[0..m) (vres_cells_rows2d of its cell, m = 0 for a particle outside the grid).
- * Each pass over up to VRES_SPH_LIST candidates
+/* vres_sph_interact, cell-wise and vectorised, in dimension dim (a compile-time constant in the
+ * variants: 2, the x-z plane, y ignored, where every y offset and y velocity difference would be
+ * zero and the sums below are those of vres_sph_interact term for term; or 3). Particle a's
+ * neighbours lie in the ranges nb[0..m) (vres_cells_rows of its cell, m = 0 for a particle
+ * outside the grid). Each pass over up to VRES_SPH_LIST candidates
  *   1. computes their distances (vector instructions over the contiguous run of slots);
- *   2. keeps those inside the support, without a branch (the cells hold about three times as
- *      many as the kernel reaches, and a per-candidate branch is mispredicted about as often
- *      as it is taken);
+ *   2. keeps those inside the support, without a branch (the cells hold about three (2D) to
+ *      six (3D) times as many as the kernel reaches, and a per-candidate branch is mispredicted
+ *      about as often as it is taken);
  *   3. gathers what the pair physics needs of each kept neighbour into arrays Q;
  *   4. computes every pair's terms over those arrays into arrays T, without a branch (vector
  *      instructions again: selects where vres_sph_interact branches);
  *   5. adds the terms in pair order.
  * Step 4 does each pair's arithmetic operation for operation as vres_sph_interact and the pair
- * functions, so vector and scalar code give the same bits, and step 5 keeps the order of the
- * sums: the results are vres_sph_interact's to the bit (tests/lib/test_solver.c checks it). */
-VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const vres_cell_range *nb, int m,
-                                                               const vres_sph_2d *P, const vres_sph_consts *C,
+ * functions (x, y, z in that order), so vector and scalar code give the same bits, and step 5
+ * keeps the order of the sums: the results are vres_sph_interact's to the bit
+ * (tests/lib/test_solver.c checks it in 2D and 3D). */
+VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const vres_cell_range *nb, int m,
+                                                               const vres_sph_arrays *P, const vres_sph_consts *C,
                                                                double *ace, double *ar, double *visc,
                                                                double *shiftv, const int ddt, const int walls,
                                                                const int viscosity, const int kernel,
-                                                               const int shift)
+                                                               const int shift, const int dim)
 {
+    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3;
     if (vres_type_is_imposed(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
         if (shift)
-            vres_sph_shift_sums(a, nb, m, P->x, NULL, P->z, 1, P->rho, P->mass, P->type, C, walls, kernel, shiftv);
+            vres_sph_shift_sums(a, nb, m, P->x, D3 ? P->y : NULL, P->z, 1, P->rho, P->mass, P->type, C, walls,
+                                kernel, shiftv);
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);
     const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(P->type[a]);
-    const double xa = P->x[a], za = P->z[a], vxa = P->vx[a], vza = P->vz[a];
+    const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
+    const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
     const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2;
     const vres_wendland k = C->k;
@@ -622,20 +660,20 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
     /* Visco of a fluid and of a wall neighbour: artificial viscosity alpha or laminar nu */
     const double visc_fluid = viscosity == VRES_VISC_LAMINAR ? C->nu : C->alpha;
     const double visc_wall = viscosity == VRES_VISC_LAMINAR ? C->nu_wall : C->alpha_wall;
-    double accx = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcz = 0, divr = 0;
+    double accx = 0, accy = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcy = 0, gcz = 0, divr = 0;
     int noshift = 0;
     struct { /* one pass's candidates */
-        double dx[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, z_ab (m) */
-        double r2[VRES_SPH_LIST];                    /* r^2 (m^2) */
-        size_t b[VRES_SPH_LIST];                     /* slot */
+        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
+        double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
+        size_t b[VRES_SPH_LIST];                                        /* slot */
         double in[VRES_SPH_LIST]; /* 1 inside the support (not a itself), else 0; a double, so
                                      that the distance loop works on one vector type */
         uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
     } L;
     struct { /* the kept pairs: what the physics needs of b */
-        double dx[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, z_ab (m) */
-        double r2[VRES_SPH_LIST];                    /* r^2 (m^2) */
-        double vx[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s) */
+        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
+        double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
+        double vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s; vy 3D) */
         double mb[VRES_SPH_LIST];                    /* b's mass (kg) */
         double rhob[VRES_SPH_LIST];                  /* b's density (kg/m^3) */
         double inv_rhob[VRES_SPH_LIST];              /* 1/rho_b (m^3/kg) */
@@ -647,11 +685,12 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
     struct { /* each kept pair's terms of a's sums */
         double arp[VRES_SPH_LIST];  /* continuity m_b v_ab . grad_a W_ab (kg/m^3/s) */
         double rate[VRES_SPH_LIST]; /* x_ab . v_ab / (r^2 + eta2) (1/s) */
-        double px[VRES_SPH_LIST], pz[VRES_SPH_LIST]; /* pressure term, subtracted from acc (m/s^2) */
-        double vx[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* viscous term: subtracted (artificial) or added
-                                                        (laminar) (m/s^2) */
+        double px[VRES_SPH_LIST], py[VRES_SPH_LIST], pz[VRES_SPH_LIST]; /* pressure term, subtracted from acc
+                                                                           (m/s^2; py 3D) */
+        double vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* viscous term: subtracted
+                                                        (artificial) or added (laminar) (m/s^2; vy 3D) */
         double diff[VRES_SPH_LIST]; /* density diffusion (kg/m^3/s; 0 for a wall b) */
-        double gx[VRES_SPH_LIST], gz[VRES_SPH_LIST]; /* shifting: V_b grad_a W_ab (1/m) */
+        double gx[VRES_SPH_LIST], gy[VRES_SPH_LIST], gz[VRES_SPH_LIST]; /* shifting: V_b grad_a W_ab (1/m; gy 3D) */
         double div[VRES_SPH_LIST];  /* shifting: V_b x_ab . grad_a W_ab (subtracted from div r) */
     } T;
     int c = 0;
@@ -659,18 +698,21 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
     while (c < m) {
         int nc = 0; /* candidates in this pass */
         for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
-            const double sx = nb[c].shift[0], sz = nb[c].shift[2];
+            const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
             size_t e = nb[c].end;
             if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
             const int len = (int)(e - b0);
-            const double *xb = P->x + b0, *zb = P->z + b0;
-            double *cdx = L.dx + nc, *cdz = L.dz + nc, *cr2 = L.r2 + nc, *cin = L.in + nc;
+            const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
+            double *cdx = L.dx + nc, *cdy = L.dy + nc, *cdz = L.dz + nc, *cr2 = L.r2 + nc, *cin = L.in + nc;
             size_t *cb = L.b + nc;
             /* 1: the distances of a run of slots */
 #pragma omp simd
             for (int j = 0; j < len; j++) {
-                double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz), r2 = dx * dx + dz * dz;
+                const double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
+                const double dy = D3 ? ya - (yb[j] + sy) : 0.0;
+                const double r2 = D3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
                 cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
+                if (D3) cdy[j] = dy;
                 cin[j] = r2 < fourh2 && r2 >= tiny ? 1.0 : 0.0;
             }
             nc += len;
@@ -690,7 +732,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
             const size_t b = L.b[i];
             const int wall_b = walls && !vres_type_acts_fluid(P->type[b]);
             Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i];
-            Q.vx[np] = P->vx[b], Q.vz[np] = P->vz[b], Q.mb[np] = P->mass[b];
+            Q.vx[np] = P->vx[b * SV], Q.vz[np] = P->vz[b * SV], Q.mb[np] = P->mass[b];
+            if (D3) Q.dy[np] = L.dy[i], Q.vy[np] = P->vy[b * SV];
             Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
             if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b || float_a ? visc_wall : visc_fluid;
             if (float_a) Q.buf[np] = (uint8_t)vres_type_is_buffer(P->type[b]);
@@ -703,17 +746,18 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
            inputs makes it zero: a select of the term itself would have the compiler compute the
            term in a branch (it may not compute, in every vector lane, a floating-point operation
            that could trap and that the program does not always ask for), and the loop would not
-           be vectorised. */
+           be vectorised. Each dot product adds x, y, z in that order, as the scalar form. */
 #pragma omp simd
         for (int j = 0; j < np; j++) {
             const double dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j], mb = Q.mb[j], rhob = Q.rhob[j];
+            const double dy = D3 ? Q.dy[j] : 0.0;
             const double r = sqrt(r2);
             const double F = kernel == VRES_KERNEL_CUBIC ? vres_cubic_f(kc, r) : vres_wendland_f(k, r);
-            const double frx = F * dx, frz = F * dz;
-            const double dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j];
+            const double frx = F * dx, fry = F * dy, frz = F * dz;
+            const double dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j], dvy = D3 ? vya - Q.vy[j] : 0.0;
             const double inv_r2eta = 1.0 / (r2 + eta2), inv_rhob = Q.inv_rhob[j];
-            T.arp[j] = mb * (dvx * frx + dvz * frz);
-            const double dot = dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
+            T.arp[j] = mb * (D3 ? dvx * frx + dvy * fry + dvz * frz : dvx * frx + dvz * frz);
+            const double dot = D3 ? dx * dvx + dy * dvy + dz * dvz : dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
             T.rate[j] = dot_rr2;
             /* vres_sph_pair_pressure, or _tensile with the cubic spline */
             const double prs = kernel == VRES_KERNEL_CUBIC
@@ -722,22 +766,27 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
                                    : mb * (pa + Q.pb[j]) * inv_rhoa * inv_rhob;
             T.px[j] = prs * frx;
             T.pz[j] = prs * frz;
+            if (D3) T.py[j] = prs * fry;
             if (viscosity == VRES_VISC_LAMINAR) { /* vres_sph_pair_laminar */
                 const double nu = walls ? Q.visc[j] : visc_fluid;
-                const double vt = mb * 4.0 * nu * (dx * frx + dz * frz) * inv_r2eta / (rhoa + rhob);
+                const double xf = D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz;
+                const double vt = mb * 4.0 * nu * xf * inv_r2eta / (rhoa + rhob);
                 T.vx[j] = vt * dvx;
                 T.vz[j] = vt * dvz;
+                if (D3) T.vy[j] = vt * dvy;
             } else { /* vres_sph_pair_visc: zero for a separating pair (dot >= 0) */
                 const double app_rr2 = dot < 0 ? dot_rr2 : 0.0;
                 const double alpha = walls ? Q.visc[j] : visc_fluid;
                 const double pi = -alpha * C->cs0 * C->h * app_rr2 / (0.5 * (rhoa + rhob)) * mb;
                 T.vx[j] = pi * frx;
                 T.vz[j] = pi * frz;
+                if (D3) T.vy[j] = pi * fry;
             }
             if (ddt != VRES_DDT_NONE) { /* vres_sph_pair_ddt, fluid-fluid pairs only */
                 double drho = rhoa - rhob;
                 if (ddt == VRES_DDT_FOURTAKAS) {
-                    double x = -C->rho0_over_B * (C->g[0] * dx + C->g[2] * dz), e = C->inv_gamma;
+                    const double gd = D3 ? C->g[0] * dx + C->g[1] * dy + C->g[2] * dz : C->g[0] * dx + C->g[2] * dz;
+                    double x = -C->rho0_over_B * gd, e = C->inv_gamma;
                     drho += C->rho0 * x * e * (1.0 + x * ((e - 1.0) / 2.0) * (1.0 + x * ((e - 2.0) / 3.0)));
                 }
                 const double mf = walls && Q.wall[j] != 0 ? 0.0 : mb;
@@ -747,7 +796,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
                 const double vol = mb * inv_rhob;
                 T.gx[j] = vol * frx;
                 T.gz[j] = vol * frz;
-                T.div[j] = vol * (dx * frx + dz * frz);
+                if (D3) T.gy[j] = vol * fry;
+                T.div[j] = vol * (D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz);
             }
         }
         /* 5: the sums, in pair order (a wall particle a sums only its density rate, a floating
@@ -759,17 +809,21 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
         if (fluid_a || float_a)
             for (int j = 0; j < np; j++) {
                 accx -= T.px[j];
+                if (D3) accy -= T.py[j];
                 accz -= T.pz[j];
                 if (viscosity == VRES_VISC_LAMINAR) {
                     accx += T.vx[j];
+                    if (D3) accy += T.vy[j];
                     accz += T.vz[j];
                 } else {
                     accx -= T.vx[j];
+                    if (D3) accy -= T.vy[j];
                     accz -= T.vz[j];
                 }
                 if (ddt != VRES_DDT_NONE && !float_a) diff += T.diff[j];
                 if (shift) {
                     gcx += T.gx[j];
+                    if (D3) gcy += T.gy[j];
                     gcz += T.gz[j];
                     divr -= T.div[j];
                 }
@@ -777,32 +831,32 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact2d(size_t a, const v
     }
     if (shift && fluid_a) {
         shiftv[4 * a] = noshift ? NAN : gcx;
-        shiftv[4 * a + 1] = 0;
+        shiftv[4 * a + 1] = gcy;
         shiftv[4 * a + 2] = gcz;
         shiftv[4 * a + 3] = divr;
     }
     ar[a] = arp + diff;
     visc[a] = vmax;
     ace[3 * a] = fluid_a ? accx + C->g[0] : float_a ? accx : 0.0;
-    ace[3 * a + 1] = fluid_a ? C->g[1] : 0.0;
+    ace[3 * a + 1] = fluid_a ? (D3 ? accy + C->g[1] : C->g[1]) : float_a ? accy : 0.0;
     ace[3 * a + 2] = fluid_a ? accz + C->g[2] : float_a ? accz : 0.0;
 }
 
-/* vres_sph_interact2d over the particles of cell `cell` of g (cell == g->ncells: the slots
+/* vres_sph_interact_v over the particles of cell `cell` of g (cell == g->ncells: the slots
  * outside the grid, which have no neighbours), the neighbour ranges found once for the cell. */
-VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vres_cells *g, const vres_sph_2d *P,
+VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vres_cells *g, const vres_sph_arrays *P,
                                                            const vres_sph_consts *C, double *ace, double *ar,
                                                            double *visc, double *shiftv, const int ddt,
                                                            const int walls, const int viscosity, const int kernel,
-                                                           const int shift)
+                                                           const int shift, const int dim)
 {
-    vres_cell_range nb[9];
+    vres_cell_range nb[27];
     size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
     int m = 0;
     if (g->begin[cell] == end) return;
-    if (cell < g->ncells) m = vres_cells_rows2d(g, (int)(cell % (size_t)g->nc[0]), (int)(cell / (size_t)g->nc[0]), nb);
+    if (cell < g->ncells) m = vres_cells_rows_of(g, cell, nb);
     for (size_t a = g->begin[cell]; a < end; a++)
-        vres_sph_interact2d(a, nb, m, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift);
+        vres_sph_interact_v(a, nb, m, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim);
 }
 
 /* VRES_CELL_LOOP(name, fn, (params), (args)): VRES_PARTICLE_LOOP over cells. On the CPU the
@@ -820,59 +874,68 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell2d(size_t cell, const vr
     }
 #endif
 
-/* VRES_SPH_CLONES: a per-cell 2D function compiled for AVX2 and the baseline (device.h's
- * VRES_CLONES): the vector loops of vres_sph_interact2d then do twice the pairs per instruction,
+/* VRES_SPH_CLONES: a per-cell function compiled for AVX2 and the baseline (device.h's
+ * VRES_CLONES): the vector loops of vres_sph_interact_v then do twice the pairs per instruction,
  * with the same bits. */
 #define VRES_SPH_CLONES VRES_CLONES
 
-/* VRES_SPH_VARIANT2D(name, ddt, walls, visc, kernel, shift) defines name_one (one cell, options fixed)
- * and its loops name_cpu / name_cuda over cells 0..ncells (n = g->ncells + 1); shiftv is
- * written only by the shifting variants (NULL for the others). */
-#define VRES_SPH_VARIANT2D(name, ddt, walls, viscosity, kernel, shift)                                            \
-    VRES_HD VRES_SPH_CLONES static inline void name##_one(size_t cell, const vres_cells *g, const vres_sph_2d *P, \
-                                          const vres_sph_consts *C, double *ace, double *ar, double *visc,        \
-                                          double *shiftv)                                                         \
+/* VRES_SPH_VARIANT_V(name, ddt, walls, visc, kernel, shift, dim) defines name_one (one cell,
+ * options fixed) and its loops name_cpu / name_cuda over cells 0..ncells (n = g->ncells + 1);
+ * shiftv is written only by the shifting variants (NULL for the others). */
+#define VRES_SPH_VARIANT_V(name, ddt, walls, viscosity, kernel, shift, dim)                                      \
+    VRES_HD VRES_SPH_CLONES static inline void name##_one(size_t cell, const vres_cells *g,                       \
+                                                          const vres_sph_arrays *P, const vres_sph_consts *C,     \
+                                                          double *ace, double *ar, double *visc, double *shiftv)  \
     {                                                                                                             \
-        vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift);              \
+        vres_sph_cell_v(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim);         \
     }                                                                                                             \
-    VRES_CELL_LOOP(name, name##_one,                                                                          \
-                       (const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C, double *ace,         \
-                        double *ar, double *visc, double *shiftv),                                                \
-                       (g, P, C, ace, ar, visc, shiftv))
+    VRES_CELL_LOOP(name, name##_one,                                                                              \
+                   (const vres_cells *g, const vres_sph_arrays *P, const vres_sph_consts *C, double *ace,         \
+                    double *ar, double *visc, double *shiftv),                                                    \
+                   (g, P, C, ace, ar, visc, shiftv))
 
-/* The nine 2D variants of one viscosity kind, kernel and shifting choice (walls x density diffusion). */
-#define VRES_SPH_VARIANTS2D(prefix, viscosity, kernel, shift) \
-    VRES_SPH_NINE(VRES_SPH_VARIANT2D, prefix, viscosity, kernel, shift)
+/* The nine cell-wise variants of one viscosity kind, kernel, shifting choice and dimension
+ * (walls x density diffusion). */
+#define VRES_SPH_VARIANTS_V(prefix, viscosity, kernel, shift, dim) \
+    VRES_SPH_NINE(VRES_SPH_VARIANT_V, prefix, viscosity, kernel, shift, dim)
 
-#define VRES_W VRES_KERNEL_WENDLAND
-#define VRES_C VRES_KERNEL_CUBIC
-VRES_SPH_VARIANTS2D(vres_sph2d_, VRES_VISC_ARTIFICIAL, VRES_W, 0)                  /* vres_sph2d_plain ... */
-VRES_SPH_VARIANTS2D(vres_sph2d_laminar_, VRES_VISC_LAMINAR, VRES_W, 0)             /* vres_sph2d_laminar_plain ... */
-VRES_SPH_VARIANTS2D(vres_sph2d_shift_, VRES_VISC_ARTIFICIAL, VRES_W, 1)            /* vres_sph2d_shift_plain ... */
-VRES_SPH_VARIANTS2D(vres_sph2d_shift_laminar_, VRES_VISC_LAMINAR, VRES_W, 1)       /* vres_sph2d_shift_laminar_... */
-VRES_SPH_VARIANTS2D(vres_sph2d_cubic_, VRES_VISC_ARTIFICIAL, VRES_C, 0)            /* vres_sph2d_cubic_plain ... */
-VRES_SPH_VARIANTS2D(vres_sph2d_cubic_laminar_, VRES_VISC_LAMINAR, VRES_C, 0)       /* vres_sph2d_cubic_laminar_... */
-VRES_SPH_VARIANTS2D(vres_sph2d_cubic_shift_, VRES_VISC_ARTIFICIAL, VRES_C, 1)      /* vres_sph2d_cubic_shift_... */
-VRES_SPH_VARIANTS2D(vres_sph2d_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_C, 1) /* vres_sph2d_cubic_shift_lam... */
-#undef VRES_W
-#undef VRES_C
+/* The eight families of one dimension: vres_sph<dim>d_plain ..., _laminar_, _shift_,
+ * _shift_laminar_ and the cubic spline's four. */
+#define VRES_SPH_FAMILIES_V(pre, dim)                                                          \
+    VRES_SPH_VARIANTS_V(pre##_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0, dim)           \
+    VRES_SPH_VARIANTS_V(pre##_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_WENDLAND, 0, dim)      \
+    VRES_SPH_VARIANTS_V(pre##_shift_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 1, dim)     \
+    VRES_SPH_VARIANTS_V(pre##_shift_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_WENDLAND, 1, dim) \
+    VRES_SPH_VARIANTS_V(pre##_cubic_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_CUBIC, 0, dim)        \
+    VRES_SPH_VARIANTS_V(pre##_cubic_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC, 0, dim)   \
+    VRES_SPH_VARIANTS_V(pre##_cubic_shift_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_CUBIC, 1, dim)  \
+    VRES_SPH_VARIANTS_V(pre##_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC, 1, dim)
 
-/* The general 2D loop: every option read at run time (a benchmarking aid that shows what the
- * specialised variants save; vres-run uses it with VRES_LOOP=general). */
-VRES_HD VRES_SPH_CLONES static inline void vres_sph2d_general_one(size_t cell, const vres_cells *g, const vres_sph_2d *P,
-                                                  const vres_sph_consts *C, double *ace, double *ar, double *visc,
-                                                  double *shiftv, int ddt, int walls, int viscosity, int kernel,
-                                                  int shift)
+VRES_SPH_FAMILIES_V(vres_sph2d, 2) /* vres_sph2d_plain ... vres_sph2d_cubic_shift_laminar_flt_fourtakas */
+/* The 3D cell-wise variants on the CPU only: a GPU thread per cell would leave most of the device
+ * idle, so the CUDA backend runs the per-particle variants above in 3D. */
+#ifndef __CUDACC__
+VRES_SPH_FAMILIES_V(vres_sph3d, 3) /* vres_sph3d_plain ... vres_sph3d_cubic_shift_laminar_flt_fourtakas */
+#endif
+
+/* The general cell-wise loop: every option read at run time (a benchmarking aid that shows what
+ * the specialised variants save; vres-run uses it with VRES_LOOP=general in 2D, and the tests in
+ * 3D). */
+VRES_HD VRES_SPH_CLONES static inline void vres_sph_general_v_one(size_t cell, const vres_cells *g,
+                                                                  const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                                  double *ace, double *ar, double *visc,
+                                                                  double *shiftv, int ddt, int walls, int viscosity,
+                                                                  int kernel, int shift, int dim)
 {
-    vres_sph_cell2d(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift);
+    vres_sph_cell_v(cell, g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim);
 }
 
-/* vres_sph2d_general_cpu / _cuda (n = ncells + 1, g, P, C, ace, ar, visc, shiftv, ddt, walls, visc kind, kernel,
- * shift). */
-VRES_CELL_LOOP(vres_sph2d_general, vres_sph2d_general_one,
-                   (const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C, double *ace, double *ar,
-                    double *visc, double *shiftv, int ddt, int walls, int viscosity, int kernel, int shift),
-                   (g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift))
+/* vres_sph_general_v_cpu / _cuda (n = ncells + 1, g, P, C, ace, ar, visc, shiftv, ddt, walls,
+ * visc kind, kernel, shift, dim). */
+VRES_CELL_LOOP(vres_sph_general_v, vres_sph_general_v_one,
+               (const vres_cells *g, const vres_sph_arrays *P, const vres_sph_consts *C, double *ace, double *ar,
+                double *visc, double *shiftv, int ddt, int walls, int viscosity, int kernel, int shift, int dim),
+               (g, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim))
 
 /* The general 3D loop (vres_sph_interact with every option read at run time), as above. */
 VRES_HD static inline void vres_sph_general_one(size_t a, const vres_cells *g, const double *pos, const float *vel,

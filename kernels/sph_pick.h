@@ -28,8 +28,8 @@ typedef void (*vres_interact_shift_fn)(size_t n, const vres_cells *g, const doub
                                        const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
                                        double *visc, double *shiftv);
 
-/* A 2D interaction loop variant (vres_sph2d_*), over n = ncells + 1 cells. */
-typedef void (*vres_interact2d_fn)(size_t n, const vres_cells *g, const vres_sph_2d *P, const vres_sph_consts *C,
+/* A cell-wise interaction loop variant (vres_sph2d_*, vres_sph3d_*), over n = ncells + 1 cells. */
+typedef void (*vres_interact_v_fn)(size_t n, const vres_cells *g, const vres_sph_arrays *P, const vres_sph_consts *C,
                                    double *ace, double *ar, double *visc, double *shiftv);
 
 /* The nine loops of one kind for one device: [walls][DensityDT]. */
@@ -38,33 +38,48 @@ typedef void (*vres_interact2d_fn)(size_t n, const vres_cells *g, const vres_sph
      {pre##dbc##sfx, pre##dbc_molteni##sfx, pre##dbc_fourtakas##sfx},                                  \
      {pre##flt##sfx, pre##flt_molteni##sfx, pre##flt_fourtakas##sfx}}
 
-/* pick_interaction (3D, no shifting sums), pick_interaction_shift (3D, with them) and
- * pick_interaction2d (2D, shift 0 or 1) for the scene's options p, over the loops with suffix
- * sfx: no diffusion code when DensityDT=0, no wall tests without walls, no floating-body terms
- * without floating bodies, only the viscosity and the kernel asked for. */
+/* pick_interaction (3D per particle, no shifting sums), pick_interaction_shift (3D per particle,
+ * with them) and pick_interaction2d (2D cell-wise, shift 0 or 1) for the scene's options p, over
+ * the loops with suffix sfx: no diffusion code when DensityDT=0, no wall tests without walls, no
+ * floating-body terms without floating bodies, only the viscosity and the kernel asked for. Each
+ * backend calls those it runs (static inline: the others and their tables are not compiled). */
 #define VRES_SPH_PICKERS(sfx)                                                                          \
-    static vres_interact_fn pick_interaction(vres_sph_pick p)                                          \
+    static inline vres_interact_fn pick_interaction(vres_sph_pick p)                                          \
     {                                                                                                  \
         static const vres_interact_fn table[2][2][3][3] = {                                            \
             {VRES_SPH_ROW9(vres_sph_, sfx), VRES_SPH_ROW9(vres_sph_laminar_, sfx)},                    \
             {VRES_SPH_ROW9(vres_sph_cubic_, sfx), VRES_SPH_ROW9(vres_sph_cubic_laminar_, sfx)}};       \
         return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }                                                                                                  \
-    static vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                              \
+    static inline vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                              \
     {                                                                                                  \
         static const vres_interact_shift_fn table[2][2][3][3] = {                                      \
             {VRES_SPH_ROW9(vres_sph_shift_, sfx), VRES_SPH_ROW9(vres_sph_shift_laminar_, sfx)},        \
             {VRES_SPH_ROW9(vres_sph_cubic_shift_, sfx), VRES_SPH_ROW9(vres_sph_cubic_shift_laminar_, sfx)}}; \
         return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }                                                                                                  \
-    static vres_interact2d_fn pick_interaction2d(vres_sph_pick p, int shift)                           \
+    static inline vres_interact_v_fn pick_interaction2d(vres_sph_pick p, int shift)                    \
     {                                                                                                  \
-        static const vres_interact2d_fn table[2][2][2][3][3] = {                                       \
+        static const vres_interact_v_fn table[2][2][2][3][3] = {                                       \
             {{VRES_SPH_ROW9(vres_sph2d_, sfx), VRES_SPH_ROW9(vres_sph2d_laminar_, sfx)},               \
              {VRES_SPH_ROW9(vres_sph2d_shift_, sfx), VRES_SPH_ROW9(vres_sph2d_shift_laminar_, sfx)}},  \
             {{VRES_SPH_ROW9(vres_sph2d_cubic_, sfx), VRES_SPH_ROW9(vres_sph2d_cubic_laminar_, sfx)},   \
              {VRES_SPH_ROW9(vres_sph2d_cubic_shift_, sfx),                                             \
               VRES_SPH_ROW9(vres_sph2d_cubic_shift_laminar_, sfx)}}};                                  \
+        return table[p.kernel == VRES_KERNEL_CUBIC][shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
+    }
+
+/* pick_interaction3d (3D cell-wise, shift 0 or 1; the CPU's only: VRES_SPH_FAMILIES_V in sph.h)
+ * for the scene's options p, over the loops with suffix sfx, as pick_interaction2d. */
+#define VRES_SPH_PICKER3D(sfx)                                                                         \
+    static inline vres_interact_v_fn pick_interaction3d(vres_sph_pick p, int shift)                    \
+    {                                                                                                  \
+        static const vres_interact_v_fn table[2][2][2][3][3] = {                                       \
+            {{VRES_SPH_ROW9(vres_sph3d_, sfx), VRES_SPH_ROW9(vres_sph3d_laminar_, sfx)},               \
+             {VRES_SPH_ROW9(vres_sph3d_shift_, sfx), VRES_SPH_ROW9(vres_sph3d_shift_laminar_, sfx)}},  \
+            {{VRES_SPH_ROW9(vres_sph3d_cubic_, sfx), VRES_SPH_ROW9(vres_sph3d_cubic_laminar_, sfx)},   \
+             {VRES_SPH_ROW9(vres_sph3d_cubic_shift_, sfx),                                             \
+              VRES_SPH_ROW9(vres_sph3d_cubic_shift_laminar_, sfx)}}};                                  \
         return table[p.kernel == VRES_KERNEL_CUBIC][shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }
 

@@ -41,18 +41,19 @@ typedef struct cpu_ctx {
     float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
     float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
     double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
-    double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
-    float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
-    double *inv_rho;      /* [n] 2D: 1/density of each particle (m^3/kg) */
+    double *xs;           /* [dim n] positions split by axis for the interaction: x then z (2D), x, y, z (3D) (m) */
+    float *v2d;           /* [2n] 2D: x then z velocities (m/s); NULL in 3D */
+    double *inv_rho;      /* [n] 1/density of each particle (m^3/kg), for the interaction */
     uint8_t *mark;        /* [n] the marks that remove reads (marks, mark_out) */
-    vres_interact_fn interact;             /* 3D variant without shifting sums */
-    vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */
+    vres_interact_v_fn interact;       /* the cell-wise variant without shifting sums (2D or 3D) */
+    vres_interact_v_fn interact_shift; /* the same with them; NULL without shifting */
     vres_work work[CPU_NWORK]; /* the arrays above that exist for this scene, with how each follows the particles */
     int nwork;                 /* entries of work */
 } cpu_ctx;
 
 /* The interaction variant choosers (kernels/sph_pick.h) over this backend's loops. */
 VRES_SPH_PICKERS(_cpu)
+VRES_SPH_PICKER3D(_cpu)
 
 /* The context of backend b. */
 static cpu_ctx *ctx_of(vres_backend *b)
@@ -116,26 +117,19 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     const run_cfg *c = &x->c;
     cpu_mdbc(b);
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
-    if (c->dim == 2) {
-        size_t n = d->n;
-        vres_sph_split2d_cpu(n, n, d->pos, d->vel, d->rho, x->x2d, x->v2d, x->inv_rho);
-        vres_sph_2d P = {x->x2d, x->x2d + n, x->v2d, x->v2d + n, d->rho, d->press, x->inv_rho, d->mass_p, d->type};
-        if (c->general)
-            vres_sph2d_general_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv,
-                                   c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift);
-        else
-            pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace,
-                                                                x->ar, x->visc, x->shiftv);
-    } else if (c->general)
+    const size_t n = d->n;
+    vres_sph_split_cpu(n, n, c->dim, d->pos, d->vel, d->rho, x->xs, x->v2d, x->inv_rho);
+    const vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, d->vel, x->v2d, d->rho, d->press, x->inv_rho,
+                                                   d->mass_p, d->type);
+    if (c->general && c->dim == 2)
+        vres_sph_general_v_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
+                               vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, 2);
+    else if (c->general) /* 3D: the per-particle loop, as the CUDA backend runs it */
         vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
                              x->ar, x->visc, x->shiftv, c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind,
                              c->kernel, shift);
-    else if (shift)
-        x->interact_shift(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
-                          x->ar, x->visc, x->shiftv);
-    else
-        x->interact(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace, x->ar,
-                    x->visc);
+    else (shift ? x->interact_shift : x->interact)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
+                                                   x->shiftv);
     double amax2 = 0, vmax = 0;
     const double *ace = x->ace, *visc = x->visc;
     const uint8_t *type = d->type;
@@ -401,11 +395,10 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
     add_work(x, &x->ar, sizeof *x->ar, VRES_WORK_SCRATCH, -1);
     add_work(x, &x->visc, sizeof *x->visc, VRES_WORK_SCRATCH, -1);
     if (c->shift) add_work(x, &x->shiftv, 4 * sizeof *x->shiftv, VRES_WORK_SCRATCH, -1);
-    if (c->dim == 2) { /* split by axis: x2d holds n x then n z values, so 2 per particle */
-        add_work(x, &x->x2d, 2 * sizeof *x->x2d, VRES_WORK_SCRATCH, -1);
-        add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);
-        add_work(x, &x->inv_rho, sizeof *x->inv_rho, VRES_WORK_SCRATCH, -1);
-    }
+    /* split by axis: xs holds n x, (n y,) n z values, so dim per particle */
+    add_work(x, &x->xs, (size_t)c->dim * sizeof *x->xs, VRES_WORK_SCRATCH, -1);
+    if (c->dim == 2) add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->inv_rho, sizeof *x->inv_rho, VRES_WORK_SCRATCH, -1);
     /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
@@ -516,8 +509,9 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
         x->nbodies = s->nbodies;
         x->body = vres_wall_bodies(s);
     }
-    x->interact = pick_interaction(vres_run_pick(c, dc));
-    x->interact_shift = c->shift ? pick_interaction_shift(vres_run_pick(c, dc)) : NULL;
+    const vres_sph_pick pk = vres_run_pick(c, dc);
+    x->interact = c->dim == 2 ? pick_interaction2d(pk, 0) : pick_interaction3d(pk, 0);
+    x->interact_shift = !c->shift ? NULL : c->dim == 2 ? pick_interaction2d(pk, 1) : pick_interaction3d(pk, 1);
     memset(b, 0, sizeof *b);
     b->ctx = x;
     b->n = n;

@@ -82,7 +82,7 @@ typedef struct cuda_ctx {
     size_t temp_bytes;    /* its size (bytes) */
 
     vres_sph_consts *dC;  /* device copy of C (the 2D loops take it by pointer) */
-    vres_sph_2d *dP;      /* device copy of the 2D loops' array set, refreshed each force evaluation */
+    vres_sph_arrays *dP;  /* device copy of the 2D loops' array set, refreshed each force evaluation */
     double *dred;         /* [2] reductions of forces: largest fluid |a|^2 (m^2/s^4) and viscous rate (1/s) */
     unsigned long long *dres; /* [2] check: first fatal slot, particles out of the box; count_pairs: the sum */
     vres_motion_state *dmv;   /* [nbodies] the bodies' transforms for move_walls; NULL without moving walls */
@@ -370,15 +370,15 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
     vres_eos_loop_cuda(n, x->dev.rho, x->dev.press, c->rho0, c->B, c->gamma);
     if (!launched(x, "EOS")) return 0;
     if (c->dim == 2) {
-        vres_sph_split2d_cuda(n, n, x->dev.pos, x->dev.vel, x->dev.rho, x->x2d, x->v2d, x->inv_rho);
-        vres_sph_2d P = {x->x2d,       x->x2d + n, x->v2d,        x->v2d + n, x->dev.rho,
-                         x->dev.press, x->inv_rho, x->dev.mass_p, x->dev.type};
+        vres_sph_split_cuda(n, n, 2, x->dev.pos, x->dev.vel, x->dev.rho, x->x2d, x->v2d, x->inv_rho);
+        vres_sph_arrays P = vres_sph_arrays_make(n, 2, x->x2d, x->dev.vel, x->v2d, x->dev.rho, x->dev.press,
+                                                 x->inv_rho, x->dev.mass_p, x->dev.type);
         if (!launched(x, "2D split arrays") ||
             !ok(x, cudaMemcpy(x->dP, &P, sizeof P, cudaMemcpyHostToDevice), "copy the 2D arrays' set"))
             return 0;
         if (c->general)
-            vres_sph2d_general_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
-                                    c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift);
+            vres_sph_general_v_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
+                                    c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, 2);
         else
             pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace,
                                                                 x->ar, x->visc, x->shiftv);
@@ -775,7 +775,7 @@ static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
         !ok(x, cudaMemset(x->hc.begin, 0, (x->hc.ncells + 2) * sizeof *x->hc.begin), what) ||
         !alloc_copy(x, &x->dcells, &x->hc, 1, 1, what))
         return 0;
-    vres_sph_2d none;
+    vres_sph_arrays none;
     memset(&none, 0, sizeof none);
     return alloc_copy(x, &x->dC, &x->C, 1, 1, what) && alloc_copy(x, &x->dP, &none, 1, 1, what) &&
            alloc(x, &x->dred, 2 * sizeof *x->dred, what) && alloc(x, &x->dres, 2 * sizeof *x->dres, what);
