@@ -28,8 +28,12 @@ VTK_INC   ?= /usr/include/vtk-9.1
 VTK_LIBS  ?= -lvtkIOXML-9.1 -lvtkIOCore-9.1 -lvtkCommonExecutionModel-9.1 -lvtkCommonDataModel-9.1 -lvtkCommonCore-9.1
 CHECK_LIBS := $(shell pkg-config --libs check 2>/dev/null)
 
-# -fno-math-errno: sqrt sets no errno, so the interaction's vector loops can use it
-OPT       ?= -O2 -g -fno-math-errno
+# -fno-math-errno: sqrt sets no errno, so the interaction's vector loops can use it.
+# -fno-trapping-math: no floating-point trap is ever enabled (vres never touches fenv), so GCC may
+# compute both arms of a select in a vector loop: without it the cubic spline's piecewise W and F
+# kept the interaction's pair pass scalar (GCC 12 moves each arm's products into a branch). Neither
+# flag changes a result: values stay IEEE's, nothing is reassociated or fused.
+OPT       ?= -O2 -g -fno-math-errno -fno-trapping-math
 WARN      := -Wall -Wextra
 CFLAGS    := -std=c11 $(WARN) $(OPT) -fopenmp -D_POSIX_C_SOURCE=200809L -Ilib -Ikernels $(PKG_CFLAGS)
 CXXFLAGS  := -std=c++17 $(WARN) $(OPT) -Ilib -isystem $(VTK_INC)

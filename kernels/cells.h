@@ -156,12 +156,14 @@ VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const doubl
 
 /* The neighbour ranges of cell (i, j, k) (x, y, z indices; j = 0 in 2D), for every particle in
  * it: for each row of cells along x around it (z outermost, then y; 3 rows in 2D, 9 in 3D) the
- * cells i-1, i, i+1, with neighbouring ranges that lie side by side in memory with the same
- * periodic image merged into one, so a row is one contiguous run of slots. Ranges come in the
- * order vres_cells_neighbours gives their cells (so sums over them add in the same order);
- * empty cells are left out. Returns how many, at most 9 (2D) or 27 (3D), into r. Only for a
- * cell inside the grid. */
-VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int k, vres_cell_range r[27])
+ * cells i-1, i, i+1, with the cells of a row that lie side by side in memory with the same
+ * periodic image merged into one range, so a row is one contiguous run of slots. Ranges come in
+ * the order vres_cells_neighbours gives their cells (so sums over them add in the same order);
+ * empty cells are left out. Returns how many, at most 9 (2D) or 27 (3D), into r; with rows
+ * (else NULL), each range's row offsets (oy, oz), each -1, 0 or 1, into rows[2 k], rows[2 k + 1].
+ * Only for a cell inside the grid. */
+VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int k, vres_cell_range r[27],
+                                          signed char *rows)
 {
     const int nx = g->nc[0], ny = g->nc[1], nz = g->nc[2], dy = g->dim == 2 ? 0 : 1;
     int m = 0;
@@ -182,6 +184,7 @@ VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int
                 ky = ky < 0 ? ky + ny : ky - ny;
             }
             const size_t *row = g->begin + ((size_t)kz * (size_t)ny + (size_t)ky) * (size_t)nx;
+            const int first = m; /* this row's first range */
             for (int ox = -1; ox <= 1; ox++) {
                 int kx = i + ox;
                 double sx = 0;
@@ -192,8 +195,7 @@ VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int
                 }
                 size_t b = row[kx], e = row[kx + 1];
                 if (b == e) continue;
-                if (m && r[m - 1].end == b && r[m - 1].shift[0] == sx && r[m - 1].shift[1] == sy &&
-                    r[m - 1].shift[2] == sz) {
+                if (m > first && r[m - 1].end == b && r[m - 1].shift[0] == sx) {
                     r[m - 1].end = e; /* the next slots in memory, same image: one range */
                     continue;
                 }
@@ -202,6 +204,7 @@ VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int
                 r[m].shift[0] = sx;
                 r[m].shift[1] = sy;
                 r[m].shift[2] = sz;
+                if (rows) rows[2 * m] = (signed char)oy, rows[2 * m + 1] = (signed char)oz;
                 m++;
             }
         }
@@ -209,11 +212,11 @@ VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int
     return m;
 }
 
-/* vres_cells_rows of the cell of index `cell` (< ncells). */
-VRES_HD static inline int vres_cells_rows_of(const vres_cells *g, size_t cell, vres_cell_range r[27])
+/* The x, y, z indices ijk of the cell of index `cell` (< ncells). */
+VRES_HD static inline void vres_cells_ijk(const vres_cells *g, size_t cell, int ijk[3])
 {
     const size_t nx = (size_t)g->nc[0], nxy = nx * (size_t)g->nc[1];
-    return vres_cells_rows(g, (int)(cell % nx), (int)(cell % nxy / nx), (int)(cell / nxy), r);
+    ijk[0] = (int)(cell % nx), ijk[1] = (int)(cell % nxy / nx), ijk[2] = (int)(cell / nxy);
 }
 
 /* How many particles b != a lie within sqrt(r2max) (m) of particle a (images across periodic

@@ -282,7 +282,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
     int m, cx[3];
     /* a row's three cells side by side in memory are one range (the same slots in the same order
        as vres_cells_neighbours gives them) */
-    m = vres_cells_locate(g, x, cx) ? vres_cells_rows(g, cx[0], cx[1], cx[2], nb) : 0;
+    m = vres_cells_locate(g, x, cx) ? vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL) : 0;
     const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
     const vres_wendland k = o.k;

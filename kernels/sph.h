@@ -616,11 +616,35 @@ VRES_HD static inline double vres_sph_accel2(size_t i, const uint8_t *type, cons
 #define VRES_SPH_LIST 128
 #endif
 
+/* A cell's neighbour ranges as the cell-wise interaction reads them (vres_sph_cell_v). */
+typedef struct vres_sph_stencil {
+    vres_cell_range nb[27]; /* the ranges (vres_cells_rows) */
+    signed char rows[54];   /* each range's row offsets (oy, oz), each -1, 0 or 1 */
+    int m;                  /* how many ranges; 0 for the slots outside the grid */
+    double ylo, yhi;        /* the cell's faces across y (m; 0 in 2D) */
+    double zlo, zhi;        /* the cell's faces across z (m) */
+} vres_sph_stencil;
+
+/* 0 when no particle of range c of the stencil S lies within sqrt(far2) (m) of a point at (y, z)
+ * (m) inside S's cell: the range's row lies across one or two faces of the cell, and the point's
+ * distance to them (in y and z together) is at least sqrt(far2); else 1. A row diagonal to the
+ * cell (oy and oz both nonzero) is out of a particle's reach at about a fifth of the places in a
+ * cell of width 2h (3D). */
+VRES_HD static inline int vres_sph_row_reaches(const vres_sph_stencil *S, int c, double y, double z, double far2)
+{
+    const int oy = S->rows[2 * c], oz = S->rows[2 * c + 1];
+    const double fy = oy < 0 ? y - S->ylo : oy > 0 ? S->yhi - y : 0.0;
+    const double fz = oz < 0 ? z - S->zlo : oz > 0 ? S->zhi - z : 0.0;
+    return fy * fy + fz * fz < far2;
+}
+
 /* vres_sph_interact, cell-wise and vectorised, in dimension dim (a compile-time constant in the
  * variants: 2, the x-z plane, y ignored, where every y offset and y velocity difference would be
  * zero and the sums below are those of vres_sph_interact term for term; or 3). Particle a's
- * neighbours lie in the ranges nb[0..m) (vres_cells_rows of its cell, m = 0 for a particle
- * outside the grid). Each pass over up to VRES_SPH_LIST candidates
+ * neighbours lie in the ranges of St, its cell's stencil (St->m = 0 for a particle outside the
+ * grid); a range whose row lies out of its reach (vres_sph_row_reaches, with a margin of 1e-6 of
+ * the support for the rounding of the cells' faces) is passed over whole, which changes no sum:
+ * none of its particles is within 2h. Each pass over up to VRES_SPH_LIST candidates
  *   1. computes their distances (vector instructions over the contiguous run of slots);
  *   2. keeps those inside the support, without a branch (the cells hold about three (2D) to
  *      six (3D) times as many as the kernel reaches, and a per-candidate branch is mispredicted
@@ -633,14 +657,15 @@ VRES_HD static inline double vres_sph_accel2(size_t i, const uint8_t *type, cons
  * functions (x, y, z in that order), so vector and scalar code give the same bits, and step 5
  * keeps the order of the sums: the results are vres_sph_interact's to the bit
  * (tests/lib/test_solver.c checks it in 2D and 3D). */
-VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const vres_cell_range *nb, int m,
+VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const vres_sph_stencil *St,
                                                                const vres_sph_arrays *P, const vres_sph_consts *C,
                                                                double *ace, double *ar, double *visc,
                                                                double *shiftv, const int ddt, const int walls,
                                                                const int viscosity, const int kernel,
                                                                const int shift, const int dim)
 {
-    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3;
+    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3, m = St->m;
+    const vres_cell_range *nb = St->nb;
     if (vres_type_is_imposed(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
         if (shift)
@@ -653,7 +678,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
     const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
-    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2;
+    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2, far2 = fourh2 * (1 + 1e-6);
     const vres_wendland k = C->k;
     const vres_cubic kc = C->kc;
     const double ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_r(pa, inv_rhoa) : 0.0; /* a's tensile part */
@@ -698,6 +723,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     while (c < m) {
         int nc = 0; /* candidates in this pass */
         for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
+            if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, ya, za, far2)) continue; /* a row out of reach */
             const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
             size_t e = nb[c].end;
             if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
@@ -850,13 +876,20 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vr
                                                            const int walls, const int viscosity, const int kernel,
                                                            const int shift, const int dim)
 {
-    vres_cell_range nb[27];
+    vres_sph_stencil St;
     size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
-    int m = 0;
+    St.m = 0;
+    St.ylo = St.yhi = St.zlo = St.zhi = 0;
     if (g->begin[cell] == end) return;
-    if (cell < g->ncells) m = vres_cells_rows_of(g, cell, nb);
+    if (cell < g->ncells) {
+        int c[3];
+        vres_cells_ijk(g, cell, c);
+        St.m = vres_cells_rows(g, c[0], c[1], c[2], St.nb, St.rows);
+        if (dim == 3) St.ylo = g->lo[1] + c[1] * g->cell[1], St.yhi = St.ylo + g->cell[1];
+        St.zlo = g->lo[2] + c[2] * g->cell[2], St.zhi = St.zlo + g->cell[2];
+    }
     for (size_t a = g->begin[cell]; a < end; a++)
-        vres_sph_interact_v(a, nb, m, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim);
+        vres_sph_interact_v(a, &St, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim);
 }
 
 /* VRES_CELL_LOOP(name, fn, (params), (args)): VRES_PARTICLE_LOOP over cells. On the CPU the
