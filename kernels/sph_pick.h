@@ -1,6 +1,6 @@
 /* sph_pick.h - choosing, once per run, the interaction loop variant of kernels/sph.h that fits a
  * scene (kernel x viscosity kind x walls present x density diffusion kind, with or without the
- * shifting sums; 2D or 3D). VRES_SPH_PICKERS(_cpu) or VRES_SPH_PICKERS(_cuda) defines the three choosers
+ * shifting sums; 2D or 3D). VRES_SPH_PICKER_CELLS and VRES_SPH_PICKERS_PARTICLE define the choosers
  * over one device's loops, so the CPU backend (lib/solver_cpu.c) and the CUDA backend
  * (lib/solver_cuda.cu) pick from the same tables. The choosers take the scene's options as
  * plain values (a vres_sph_pick), so the physics knows nothing of the solver's configuration. */
@@ -38,48 +38,38 @@ typedef void (*vres_interact_v_fn)(size_t n, const vres_cells *g, const vres_sph
      {pre##dbc##sfx, pre##dbc_molteni##sfx, pre##dbc_fourtakas##sfx},                                  \
      {pre##flt##sfx, pre##flt_molteni##sfx, pre##flt_fourtakas##sfx}}
 
-/* pick_interaction (3D per particle, no shifting sums), pick_interaction_shift (3D per particle,
- * with them) and pick_interaction2d (2D cell-wise, shift 0 or 1) for the scene's options p, over
- * the loops with suffix sfx: no diffusion code when DensityDT=0, no wall tests without walls, no
- * floating-body terms without floating bodies, only the viscosity and the kernel asked for. Each
- * backend calls those it runs (static inline: the others and their tables are not compiled). */
-#define VRES_SPH_PICKERS(sfx)                                                                          \
-    static inline vres_interact_fn pick_interaction(vres_sph_pick p)                                          \
+/* pick_interaction (3D per particle, no shifting sums) and pick_interaction_shift (3D per
+ * particle, with them) for the scene's options p, over the loops with suffix sfx: no diffusion
+ * code when DensityDT=0, no wall tests without walls, no floating-body terms without floating
+ * bodies, only the viscosity and the kernel asked for. The CUDA backend's choosers in 3D. */
+#define VRES_SPH_PICKERS_PARTICLE(sfx)                                                                 \
+    static inline vres_interact_fn pick_interaction(vres_sph_pick p)                                   \
     {                                                                                                  \
         static const vres_interact_fn table[2][2][3][3] = {                                            \
             {VRES_SPH_ROW9(vres_sph_, sfx), VRES_SPH_ROW9(vres_sph_laminar_, sfx)},                    \
             {VRES_SPH_ROW9(vres_sph_cubic_, sfx), VRES_SPH_ROW9(vres_sph_cubic_laminar_, sfx)}};       \
         return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }                                                                                                  \
-    static inline vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                              \
+    static inline vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                       \
     {                                                                                                  \
         static const vres_interact_shift_fn table[2][2][3][3] = {                                      \
             {VRES_SPH_ROW9(vres_sph_shift_, sfx), VRES_SPH_ROW9(vres_sph_shift_laminar_, sfx)},        \
             {VRES_SPH_ROW9(vres_sph_cubic_shift_, sfx), VRES_SPH_ROW9(vres_sph_cubic_shift_laminar_, sfx)}}; \
         return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
-    }                                                                                                  \
-    static inline vres_interact_v_fn pick_interaction2d(vres_sph_pick p, int shift)                    \
-    {                                                                                                  \
-        static const vres_interact_v_fn table[2][2][2][3][3] = {                                       \
-            {{VRES_SPH_ROW9(vres_sph2d_, sfx), VRES_SPH_ROW9(vres_sph2d_laminar_, sfx)},               \
-             {VRES_SPH_ROW9(vres_sph2d_shift_, sfx), VRES_SPH_ROW9(vres_sph2d_shift_laminar_, sfx)}},  \
-            {{VRES_SPH_ROW9(vres_sph2d_cubic_, sfx), VRES_SPH_ROW9(vres_sph2d_cubic_laminar_, sfx)},   \
-             {VRES_SPH_ROW9(vres_sph2d_cubic_shift_, sfx),                                             \
-              VRES_SPH_ROW9(vres_sph2d_cubic_shift_laminar_, sfx)}}};                                  \
-        return table[p.kernel == VRES_KERNEL_CUBIC][shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }
 
-/* pick_interaction3d (3D cell-wise, shift 0 or 1; the CPU's only: VRES_SPH_FAMILIES_V in sph.h)
- * for the scene's options p, over the loops with suffix sfx, as pick_interaction2d. */
-#define VRES_SPH_PICKER3D(sfx)                                                                         \
-    static inline vres_interact_v_fn pick_interaction3d(vres_sph_pick p, int shift)                    \
+/* pick_interaction<D>d (p, shift): the cell-wise variant (vres_sph<D>d_*, shift 0 or 1) for the
+ * scene's options p, over the loops with suffix sfx, as above; D is 2 (both backends) or 3 (the
+ * CPU's only: VRES_SPH_FAMILIES_V in sph.h). */
+#define VRES_SPH_PICKER_CELLS(sfx, D)                                                                  \
+    static inline vres_interact_v_fn pick_interaction##D##d(vres_sph_pick p, int shift)                \
     {                                                                                                  \
         static const vres_interact_v_fn table[2][2][2][3][3] = {                                       \
-            {{VRES_SPH_ROW9(vres_sph3d_, sfx), VRES_SPH_ROW9(vres_sph3d_laminar_, sfx)},               \
-             {VRES_SPH_ROW9(vres_sph3d_shift_, sfx), VRES_SPH_ROW9(vres_sph3d_shift_laminar_, sfx)}},  \
-            {{VRES_SPH_ROW9(vres_sph3d_cubic_, sfx), VRES_SPH_ROW9(vres_sph3d_cubic_laminar_, sfx)},   \
-             {VRES_SPH_ROW9(vres_sph3d_cubic_shift_, sfx),                                             \
-              VRES_SPH_ROW9(vres_sph3d_cubic_shift_laminar_, sfx)}}};                                  \
+            {{VRES_SPH_ROW9(vres_sph##D##d_, sfx), VRES_SPH_ROW9(vres_sph##D##d_laminar_, sfx)},       \
+             {VRES_SPH_ROW9(vres_sph##D##d_shift_, sfx), VRES_SPH_ROW9(vres_sph##D##d_shift_laminar_, sfx)}}, \
+            {{VRES_SPH_ROW9(vres_sph##D##d_cubic_, sfx), VRES_SPH_ROW9(vres_sph##D##d_cubic_laminar_, sfx)}, \
+             {VRES_SPH_ROW9(vres_sph##D##d_cubic_shift_, sfx),                                         \
+              VRES_SPH_ROW9(vres_sph##D##d_cubic_shift_laminar_, sfx)}}};                              \
         return table[p.kernel == VRES_KERNEL_CUBIC][shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
     }
 

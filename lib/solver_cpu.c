@@ -52,8 +52,8 @@ typedef struct cpu_ctx {
 } cpu_ctx;
 
 /* The interaction variant choosers (kernels/sph_pick.h) over this backend's loops. */
-VRES_SPH_PICKERS(_cpu)
-VRES_SPH_PICKER3D(_cpu)
+VRES_SPH_PICKER_CELLS(_cpu, 2)
+VRES_SPH_PICKER_CELLS(_cpu, 3)
 
 /* The context of backend b. */
 static cpu_ctx *ctx_of(vres_backend *b)

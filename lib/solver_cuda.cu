@@ -241,7 +241,8 @@ struct max_op {
 /* ---- variant tables ---- */
 
 /* The interaction variant choosers (kernels/sph_pick.h) over this backend's loops. */
-VRES_SPH_PICKERS(_cuda)
+VRES_SPH_PICKERS_PARTICLE(_cuda)
+VRES_SPH_PICKER_CELLS(_cuda, 2)
 
 /* ---- the operations ---- */
 

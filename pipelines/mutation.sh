@@ -25,8 +25,8 @@ MUTANTS=(
     "no-density-diffusion|kernels/sph.h|diff += |diff += 0.0 * |density diffusion term dropped (both interaction loops)"
     "kernel-constant|kernels/wendland.h|7.0 / (4.0 * VRES_WENDLAND_PI|7.0 / (5.0 * VRES_WENDLAND_PI|Wendland C2 2D normalisation 7/(5 pi h^2) instead of 7/(4 pi h^2)"
     "cell-search-off-by-one|kernels/cells.h|for (int ox = -1; ox <= 1; ox++) {
-            int kx|for (int ox = -1; ox < 1; ox++) {
-            int kx|2D cell search (vres_cells_rows2d) skips the column of cells to the right"
+                int kx|for (int ox = -1; ox < 1; ox++) {
+                int kx|cell-wise search (vres_cells_rows, 2D and 3D) skips the column of cells to the right"
     "eos-offset|kernels/eos.h| - 1.0);|);|Tait equation without its -1: p = B (rho/rho0)^gamma (both forms, by products and by pow)"
     "coupling-interp-axis|kernels/interp_liu.h|e[i] = d[ax[i - 1]] * inv_h|e[i] = d[ax[0]] * inv_h|coupling's corrected kernel: every gradient column takes the x offset"
     "corrector-first-order|kernels/sph.h|pos0[3 * i + k] + 0.5 * dt * (vel0[3 * i + k] + v)|pos0[3 * i + k] + dt * v|Symplectic corrector moves particles with the end velocity only (first order)"
