@@ -154,6 +154,20 @@ VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const doubl
     return m;
 }
 
+/* Cell index *c along axis a of g, at most one cell past the grid's edge: 1 when it lies in the
+ * grid as given (*s = 0) or wrapped across a periodic edge (*c the cell on the other side, *s the
+ * shift of its particles' image, -/+ the period, m); 0 when it lies off a non-periodic edge. */
+VRES_HD static inline int vres_cells_wrap_axis(const vres_cells *g, int a, int *c, double *s)
+{
+    const int n = g->nc[a];
+    *s = 0;
+    if (*c >= 0 && *c < n) return 1;
+    if (!g->periodic[a]) return 0;
+    *s = *c < 0 ? -g->period[a] : g->period[a];
+    *c = *c < 0 ? *c + n : *c - n;
+    return 1;
+}
+
 /* The neighbour ranges of cell (i, j, k) (x, y, z indices; j = 0 in 2D), for every particle in
  * it: for each row of cells along x around it (z outermost, then y; 3 rows in 2D, 9 in 3D) the
  * cells i-1, i, i+1, with the cells of a row that lie side by side in memory with the same
@@ -165,34 +179,22 @@ VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const doubl
 VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int k, vres_cell_range r[27],
                                           signed char *rows)
 {
-    const int nx = g->nc[0], ny = g->nc[1], nz = g->nc[2], dy = g->dim == 2 ? 0 : 1;
+    const int nx = g->nc[0], ny = g->nc[1], dy = g->dim == 2 ? 0 : 1;
     int m = 0;
     for (int oz = -1; oz <= 1; oz++) {
         int kz = k + oz;
-        double sz = 0;
-        if (kz < 0 || kz >= nz) {
-            if (!g->periodic[2]) continue;
-            sz = kz < 0 ? -g->period[2] : g->period[2];
-            kz = kz < 0 ? kz + nz : kz - nz;
-        }
+        double sz;
+        if (!vres_cells_wrap_axis(g, 2, &kz, &sz)) continue;
         for (int oy = -dy; oy <= dy; oy++) {
             int ky = j + oy;
-            double sy = 0;
-            if (ky < 0 || ky >= ny) {
-                if (!g->periodic[1]) continue;
-                sy = ky < 0 ? -g->period[1] : g->period[1];
-                ky = ky < 0 ? ky + ny : ky - ny;
-            }
+            double sy;
+            if (!vres_cells_wrap_axis(g, 1, &ky, &sy)) continue;
             const size_t *row = g->begin + ((size_t)kz * (size_t)ny + (size_t)ky) * (size_t)nx;
             const int first = m; /* this row's first range */
             for (int ox = -1; ox <= 1; ox++) {
                 int kx = i + ox;
-                double sx = 0;
-                if (kx < 0 || kx >= nx) {
-                    if (!g->periodic[0]) continue;
-                    sx = kx < 0 ? -g->period[0] : g->period[0];
-                    kx = kx < 0 ? kx + nx : kx - nx;
-                }
+                double sx;
+                if (!vres_cells_wrap_axis(g, 0, &kx, &sx)) continue;
                 size_t b = row[kx], e = row[kx + 1];
                 if (b == e) continue;
                 if (m > first && r[m - 1].end == b && r[m - 1].shift[0] == sx) {
