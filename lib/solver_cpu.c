@@ -121,13 +121,9 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     vres_sph_split_cpu(n, n, c->dim, d->pos, d->vel, d->rho, x->xs, x->v2d, x->inv_rho);
     const vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, d->vel, x->v2d, d->rho, d->press, x->inv_rho,
                                                    d->mass_p, d->type);
-    if (c->general && c->dim == 2)
+    if (c->general)
         vres_sph_general_v_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
-                               vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, 2);
-    else if (c->general) /* 3D: the per-particle loop, as the CUDA backend runs it */
-        vres_sph_general_cpu(d->n, &x->cells, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, x->C, x->ace,
-                             x->ar, x->visc, x->shiftv, c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind,
-                             c->kernel, shift);
+                               vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, c->dim);
     else (shift ? x->interact_shift : x->interact)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
                                                    x->shiftv);
     double amax2 = 0, vmax = 0;
