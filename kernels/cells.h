@@ -181,6 +181,21 @@ VRES_HD static inline int vres_cells_rows(const vres_cells *g, int i, int j, int
 {
     const int nx = g->nc[0], ny = g->nc[1], dy = g->dim == 2 ? 0 : 1;
     int m = 0;
+    if (i > 0 && i + 1 < nx && (!dy || (j > 0 && j + 1 < ny)) && k > 0 && k + 1 < g->nc[2]) {
+        /* inside the grid: no row wraps, and a row's three cells are one range (the merge below
+           would make that of them, empty cells included) */
+        for (int oz = -1; oz <= 1; oz++)
+            for (int oy = -dy; oy <= dy; oy++) {
+                const size_t *row = g->begin + ((size_t)(k + oz) * (size_t)ny + (size_t)(j + oy)) * (size_t)nx;
+                const size_t b = row[i - 1], e = row[i + 2];
+                if (b == e) continue;
+                r[m].begin = b, r[m].end = e;
+                r[m].shift[0] = r[m].shift[1] = r[m].shift[2] = 0;
+                if (rows) rows[2 * m] = (signed char)oy, rows[2 * m + 1] = (signed char)oz;
+                m++;
+            }
+        return m;
+    }
     for (int oz = -1; oz <= 1; oz++) {
         int kz = k + oz;
         double sz;

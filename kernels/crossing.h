@@ -106,7 +106,8 @@ VRES_HD static inline void vres_cross_piece(vres_cross *X, int p1, int p2, doubl
  * periodic, d[1] = 0 in 2D) now, carried across X's segment over the step, negative for what
  * crossed out; 0 unless X's piece holds it along the tangents (tested before the step's
  * displacement is formed: most candidates fail it). */
-VRES_HD static inline double vres_cross_term(const vres_cross *X, size_t b, const double d[3], double mb)
+VRES_HD static inline VRES_FORCE_INLINE double vres_cross_term(const vres_cross *X, size_t b, const double d[3],
+                                                                double mb)
 {
     const double u1 = d[0] * X->t1[0] + d[1] * X->t1[1] + d[2] * X->t1[2];
     const double u2 = X->dim == 2 ? 0.0 : d[0] * X->t2[0] + d[1] * X->t2[1] + d[2] * X->t2[2];
@@ -116,6 +117,7 @@ VRES_HD static inline double vres_cross_term(const vres_cross *X, size_t b, cons
     if (cover <= 0) return 0.0;
     double d0[3];
     for (int a = 0; a < 3; a++) {
+        if (a == 1 && X->dim == 2) continue; /* set to 0 below */
         /* the step's displacement, less a period where the particle wrapped */
         double u = X->pos[3 * b + a] - X->pos0[3 * b + a];
         const double L = X->period[a];

@@ -316,6 +316,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         double vb[VRES_LIU_LIST];   /* V = m / den (m^3) */
     } Q;
     vres_liu_rows S;
+    if (DIM == 2)
+        for (int j = 0; j < VRES_LIU_LIST; j++) L.d[1][j] = 0.0;
     int c = 0;
     size_t b0 = m ? nb[0].begin : 0;
     while (c < m) {
@@ -333,7 +335,9 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             for (int j = 0; j < len; j++) {
                 const double d0 = pb[3 * j] + sh[0] - x[0], d2 = pb[3 * j + 2] + sh[2] - x[2];
                 const double d1 = DIM == 2 ? 0.0 : pb[3 * j + 1] + sh[1] - x[1];
-                c0[j] = d0, c1[j] = d1, c2[j] = d2, cr2[j] = d0 * d0 + d1 * d1 + d2 * d2, cb[j] = b0 + (size_t)j;
+                c0[j] = d0, c2[j] = d2, cr2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
+                if (DIM == 3) c1[j] = d1; /* 2D: y offsets stay 0 (set before the passes) */
+                cb[j] = b0 + (size_t)j;
             }
             nc += len;
             b0 = e;
@@ -455,8 +459,10 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, co
 VRES_HD static inline VRES_FORCE_INLINE int vres_liu_invert_n(const int n, double a[VRES_LIU_NMAX][VRES_LIU_NMAX],
                                                               double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++) inv[i][j] = i == j;
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < n; j++) inv[i][j] = 0.0;
+        inv[i][i] = 1.0;
+    }
     VRES_LIU_UNROLL
     for (int c = 0; c < n; c++) {
         int p = c;

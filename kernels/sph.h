@@ -638,6 +638,87 @@ VRES_HD static inline int vres_sph_row_reaches(const vres_sph_stencil *S, int c,
     return fy * fy + fz * fz < far2;
 }
 
+/* vres_sph_shift_sums of buffer (or inlet) particle a in the cell-wise loop: its neighbours in
+ * the ranges of St (rows out of reach passed over, as vres_sph_interact_v does), positions and
+ * the rest from P, dimension dim a compile-time constant in the variants. Each pass computes the
+ * distances of a run of slots and keeps the candidates inside the support without a branch
+ * (vector instructions, as vres_sph_interact_v's steps 1 and 2), then each kept pair's kernel
+ * factor and volume, then adds the terms in pair order: the operations and the order of
+ * vres_sph_shift_sums, so the same bits (tests/lib/test_buffer.c). */
+VRES_HD VRES_SPH_INLINE static inline void vres_sph_shift_sums_v(size_t a, const vres_sph_stencil *St,
+                                                                 const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                                 const int walls, const int kernel, double *shiftv,
+                                                                 const int dim)
+{
+    const int D3 = dim == 3, m = St->m;
+    const vres_cell_range *nb = St->nb;
+    const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
+    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, far2 = fourh2 * (1 + 1e-6);
+    double gcx = 0, gcy = 0, gcz = 0, divr = 0;
+    int noshift = 0;
+    struct { /* one pass's candidates */
+        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
+        double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
+        double in[VRES_SPH_LIST];    /* 1 inside the support (not a itself), else 0 */
+        size_t b[VRES_SPH_LIST];     /* slot */
+        uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
+    } L;
+    double F[VRES_SPH_LIST], vol[VRES_SPH_LIST]; /* each kept pair's F(r) (m^-(dim+2)) and V_b (m^3) */
+    int c = 0;
+    size_t b0 = m ? nb[0].begin : 0;
+    while (c < m) {
+        int nc = 0;
+        for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
+            if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, ya, za, far2)) continue;
+            const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
+            size_t e = nb[c].end;
+            if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
+            const int len = (int)(e - b0);
+            const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
+            double *cdx = L.dx + nc, *cdy = L.dy + nc, *cdz = L.dz + nc, *cr2 = L.r2 + nc, *cin = L.in + nc;
+            size_t *cb = L.b + nc;
+#pragma omp simd
+            for (int j = 0; j < len; j++) {
+                const double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
+                const double dy = D3 ? ya - (yb[j] + sy) : 0.0;
+                const double r2 = D3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
+                cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
+                if (D3) cdy[j] = dy;
+                cin[j] = r2 < fourh2 && r2 >= tiny ? 1.0 : 0.0;
+            }
+            nc += len;
+            b0 = e;
+            if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
+        }
+        int nkept = 0;
+        for (int j = 0; j < nc; j++) {
+            L.kept[nkept] = (uint8_t)j;
+            nkept += (int)L.in[j];
+        }
+        for (int j = 0; j < nkept; j++) {
+            const size_t b = L.b[L.kept[j]];
+            F[j] = vres_sph_kernel_f(C, kernel, sqrt(L.r2[L.kept[j]]));
+            vol[j] = P->mass[b] * P->inv_rho[b];
+        }
+        for (int j = 0; j < nkept; j++) {
+            const int i = L.kept[j];
+            const double dx = L.dx[i], dy = D3 ? L.dy[i] : 0.0, dz = L.dz[i];
+            const double frx = F[j] * dx, fry = F[j] * dy, frz = F[j] * dz;
+            const int tb = P->type[L.b[i]];
+            if (walls && !vres_type_acts_fluid(tb) &&
+                (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(tb))))
+                noshift = 1;
+            gcx += vol[j] * frx, gcz += vol[j] * frz;
+            if (D3) gcy += vol[j] * fry;
+            divr -= D3 ? vol[j] * (dx * frx + dy * fry + dz * frz) : vol[j] * (dx * frx + dz * frz);
+        }
+    }
+    shiftv[4 * a] = noshift ? NAN : gcx;
+    shiftv[4 * a + 1] = gcy;
+    shiftv[4 * a + 2] = gcz;
+    shiftv[4 * a + 3] = divr;
+}
+
 /* vres_sph_interact, cell-wise and vectorised, in dimension dim (a compile-time constant in the
  * variants: 2, the x-z plane, y ignored, where every y offset and y velocity difference would be
  * zero and the sums below are those of vres_sph_interact term for term; or 3). Particle a's
@@ -668,9 +749,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     const vres_cell_range *nb = St->nb;
     if (vres_type_is_imposed(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
-        if (shift)
-            vres_sph_shift_sums(a, nb, m, P->x, D3 ? P->y : NULL, P->z, 1, P->rho, P->mass, P->type, C, walls,
-                                kernel, shiftv);
+        if (shift) vres_sph_shift_sums_v(a, St, P, C, walls, kernel, shiftv, dim);
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);

@@ -46,6 +46,7 @@ typedef struct couple_dom {
     size_t *src;          /* [nseg] interface index in the store of each segment */
     size_t *srci;         /* [nseg] its index in that interface */
     int32_t mk;           /* mk given to new buffer particles (the domain's fluid mk) */
+    int unsorted;         /* 1 when particles were deleted or created since its last sort (its cells are stale) */
     vres_couple_ledger L; /* what happened to its particles since the run began */
 } couple_dom;
 
@@ -275,11 +276,17 @@ static void count_events(couple_dom *cd, const size_t *n_ev, const double *m_ev)
     }
 }
 
-int vres_couple_drop_marked(vres_backend *b, const size_t *n_ev)
+/* The particles that the events n_ev [VRES_EV_COUNT] of a pass delete. */
+static size_t deletions(const size_t *n_ev)
 {
     size_t n = 0;
     for (int e = 1; e < VRES_EV_COUNT; e++) n += vres_couple_event_deletes(e) ? n_ev[e] : 0;
-    return n ? b->remove(b, b->marks(b)) : 0;
+    return n;
+}
+
+int vres_couple_drop_marked(vres_backend *b, const size_t *n_ev)
+{
+    return deletions(n_ev) ? b->remove(b, b->marks(b)) : 0;
 }
 
 /* 1 when segment j of S creates a particle of mass m (kg) now: it holds that mass, and the spot
@@ -373,8 +380,27 @@ static int uncoupled(const run_set *set)
     return -1;
 }
 
+/* Sort every domain by cell (with carry, the step's start follows: the crossing flux reads it);
+ * with stale_only 1 only those whose particles were deleted or created since their last sort
+ * (the others' order and cells would come out as they are). 0 or -1. */
+static int sort_domains(vres_couple *C, run_set *set, int carry, int stale_only)
+{
+    double t0 = vres_run_wall_now();
+    int rc = 0;
+    for (int k = 0; k < C->ndom && rc == 0; k++) {
+        if (stale_only && !C->d[k].unsorted) continue;
+        rc = set->b[k].sort(&set->b[k], carry) != 0 ? -1 : 0;
+        C->d[k].unsorted = 0;
+    }
+    C->part.compact += vres_run_wall_now() - t0;
+    return rc;
+}
+
 /* Every domain's buffers from the donors (cells current); with del 1 those without support
- * are deleted, else they keep their values. 0 or -1. */
+ * are deleted, once every domain has been interpolated (a deletion compacts a domain's arrays,
+ * which a later domain reads as its donor), and the domains that lost any are sorted again, so
+ * that every domain's cells are current when this returns; else they keep their values. 0 or
+ * -1. */
 static int buffers(vres_couple *C, run_set *set, int del)
 {
     refresh_donors(C, set);
@@ -383,15 +409,20 @@ static int buffers(vres_couple *C, run_set *set, int del)
         double m_ev[VRES_EV_COUNT] = {0};
         double t0 = vres_run_wall_now();
         set->b[k].couple_buffers(&set->b[k], C->reg, C->ndom, k, C->donors, n_ev, m_ev);
-        double t1 = vres_run_wall_now();
-        C->part.interp += t1 - t0;
+        C->part.interp += vres_run_wall_now() - t0;
         if (!del) continue;
         count_events(&C->d[k], n_ev, m_ev);
-        int rc = vres_couple_drop_marked(&set->b[k], n_ev);
-        C->part.compact += vres_run_wall_now() - t1;
+        C->d[k].unsorted = deletions(n_ev) > 0;
+    }
+    for (int k = 0; del && k < C->ndom; k++) {
+        if (!C->d[k].unsorted) continue;
+        double t0 = vres_run_wall_now();
+        /* the marks of domain k's pass are still the backend's: no other pass of k ran since */
+        int rc = set->b[k].remove(&set->b[k], set->b[k].marks(&set->b[k]));
+        C->part.compact += vres_run_wall_now() - t0;
         if (rc != 0) return -1;
     }
-    return 0;
+    return del ? sort_domains(C, set, 0, 1) : 0;
 }
 
 int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
@@ -423,17 +454,6 @@ int vres_couple_shift(run_set *set)
     return 0;
 }
 
-/* Sort every domain by cell (with carry, the step's start follows: the crossing flux reads it).
- * 0 or -1. */
-static int sort_domains(vres_couple *C, run_set *set, int carry)
-{
-    double t0 = vres_run_wall_now();
-    int rc = 0;
-    for (int k = 0; k < C->ndom && rc == 0; k++) rc = set->b[k].sort(&set->b[k], carry) != 0 ? -1 : 0;
-    C->part.compact += vres_run_wall_now() - t0;
-    return rc;
-}
-
 /* Classify every domain's particles by region (type changes, deletions counted and done); with
  * births 1 the segments holding a particle's mass then create their particles. 0 or -1. */
 static int classify_domains(vres_couple *C, run_set *set, int births)
@@ -445,9 +465,11 @@ static int classify_domains(vres_couple *C, run_set *set, int births)
         set->b[k].couple_classify(&set->b[k], C->reg, C->ndom, k, n_ev, m_ev);
         count_events(&C->d[k], n_ev, m_ev);
         double t1 = vres_run_wall_now();
+        const size_t n0 = set->b[k].n;
         int rc = vres_couple_drop_marked(&set->b[k], n_ev);
         double t2 = vres_run_wall_now();
         if (rc == 0 && births) rc = create(C, &set->b[k], k, set->dom[k].dp, set->dom[k].mass);
+        C->d[k].unsorted = deletions(n_ev) > 0 || set->b[k].n != n0;
         C->part.create += (t1 - t0) + (vres_run_wall_now() - t2);
         C->part.compact += t2 - t1;
         if (rc != 0) return -1;
@@ -479,7 +501,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     double t0 = vres_run_wall_now();
     track_move(C, t); /* the boxes that follow a body where it is at the new time */
     /* the crossing count reads the step's start positions: only then must they follow the sort */
-    if (sort_domains(C, set, C->flux != VRES_FLUX_INTERP) != 0) return -1;
+    if (sort_domains(C, set, C->flux != VRES_FLUX_INTERP, 0) != 0) return -1;
     double tf = vres_run_wall_now();
     refresh_donors(C, set);
     /* the segments see every domain at the new time, before any type changes */
@@ -492,7 +514,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
         if (C->flux == VRES_FLUX_BALANCED || C->flux == VRES_FLUX_CAPPED) balance(cd, C->ndom, C->flux == VRES_FLUX_CAPPED);
     }
     C->part.flux += vres_run_wall_now() - tf;
-    if (classify_domains(C, set, 1) != 0 || sort_domains(C, set, 0) != 0 || buffers(C, set, 1) != 0) return -1;
+    if (classify_domains(C, set, 1) != 0 || sort_domains(C, set, 0, 1) != 0 || buffers(C, set, 1) != 0) return -1;
     C->fresh = 1;
     C->wall += vres_run_wall_now() - t0;
     return 0;
@@ -511,7 +533,7 @@ int vres_couple_start(run_set *set, const run_cfg *c)
         return 0;
     }
     const vres_couple_parts keep = C->part; /* the start is not in wall: nor in its parts */
-    if (sort_domains(C, set, 0) != 0 || classify_domains(C, set, 0) != 0 || sort_domains(C, set, 0) != 0 ||
+    if (sort_domains(C, set, 0, 0) != 0 || classify_domains(C, set, 0) != 0 || sort_domains(C, set, 0, 1) != 0 ||
         buffers(C, set, 1) != 0)
         return -1;
     C->part = keep;
