@@ -121,7 +121,7 @@ VRES_HD static inline VRES_FORCE_INLINE double vres_cross_term(const vres_cross 
         /* the step's displacement, less a period where the particle wrapped */
         double u = X->pos[3 * b + a] - X->pos0[3 * b + a];
         const double L = X->period[a];
-        if (L > 0) u -= L * floor(u / L + 0.5);
+        if (L > 0 && !(fabs(u) < 0.25 * L)) u -= L * floor(u / L + 0.5); /* below L/4 the floor is 0 */
         d0[a] = d[a] - u + X->vdt[a];
     }
     if (X->dim == 2) d0[1] = 0;

@@ -370,8 +370,10 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             Q.dv[j] = vb * negf * r2;
             Q.vg[j] = vb * negf * h2;
             Q.w0[j] = vb * vres_wendland_w(k, r);
-            const double hgr = vb * h2 * vres_wendland_dfdr(k, r) / (r > 0 ? r : 1.0);
-            Q.hg[j] = r > 0 ? hgr : 0.0;
+            if (N > nl) { /* the Hessian rows: second order only */
+                const double hgr = vb * h2 * vres_wendland_dfdr(k, r) / (r > 0 ? r : 1.0);
+                Q.hg[j] = r > 0 ? hgr : 0.0;
+            }
         }
         /* 5: D and the nearest distance in donor order, and each kept fluid donor's basis column
            and test row (and fields) */

@@ -73,11 +73,10 @@ VRES_HD static inline void vres_region_world(const vres_region *r, const double 
  * axes of a dim-dimensional case. */
 VRES_HD static inline int vres_region_in_box(const double lo[3], const double hi[3], double g, const double x[3], int dim)
 {
-    for (int a = 0; a < 3; a++) {
-        if (dim == 2 && a == 1) continue;
-        if (!(x[a] >= lo[a] - g && x[a] <= hi[a] + g)) return 0;
-    }
-    return 1;
+    /* every axis tested, without a branch (NaN fails) */
+    const int in_x = x[0] >= lo[0] - g && x[0] <= hi[0] + g, in_z = x[2] >= lo[2] - g && x[2] <= hi[2] + g;
+    const int in_y = dim == 2 || (x[1] >= lo[1] - g && x[1] <= hi[1] + g);
+    return in_x & in_y & in_z;
 }
 
 /* Where x lies for domain k of the nreg domains reg: VRES_REGION_FLUID, VRES_REGION_BUFFER with
@@ -85,8 +84,8 @@ VRES_HD static inline int vres_region_in_box(const double lo[3], const double hi
  * the band inside that child's box), or VRES_REGION_OUT (beyond k's own buffer, or deep in a
  * child: inside its inner box); *donor is -1 unless buffer. The root's fluid is unbounded here:
  * leaving the simulation domain is the run's own test. */
-VRES_HD static inline int vres_region_classify(const vres_region *reg, int nreg, int k, const double x[3], int dim,
-                                               int *donor)
+VRES_HD static inline VRES_FORCE_INLINE int vres_region_classify(const vres_region *reg, int nreg, int k,
+                                                                 const double x[3], int dim, int *donor)
 {
     const vres_region *r = &reg[k];
     double y[3];
