@@ -115,6 +115,11 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
     const run_cfg *c = &x->c;
+    if (x->cells.n != d->n) { /* a removal or an append that no sort followed: the cells hold other slots */
+        vres_error("internal error: domain of %zu particles, cells built for %zu (no sort after a deletion or a "
+                   "creation)", d->n, x->cells.n);
+        abort();
+    }
     cpu_mdbc(b);
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
     const size_t n = d->n;

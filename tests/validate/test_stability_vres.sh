@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The stability verdict of a coupled run (pipelines/stability.sh on several domains; DESIGN
 # section 7, issue 7 item 7): a quick run of cases/stiff_vres_front2d (the dam-break front into
-# a refinement box in mid-tank) to 0.2 s, through the front's entry into the box, passes with
+# a refinement box in mid-tank) to 0.3 s, through the front's entry into the box, passes with
 # the ledger's drift within one particle mass per segment, its accounts closed and no runaway;
 # then the verdict on doctored copies of its ledger.tsv, which it must reject: a particle that
 # appears outside the ledger's accounts, a drift past the bound, a band holding far more buffer
@@ -16,8 +16,8 @@ verdict_of() { (stability_verdict "$@" 2>/dev/null) | awk -F'\t' '$1 == "verdict
 # key FILE KEY: the value of a result line
 key() { awk -F'\t' -v k="$2" '$1 == k {print $2}' "$1"; }
 
-expect 0 "stiff_vres_front2d: check passes to 0.2 s" \
-    "$CASES/stiff_vres_front2d/check" --threads 1 --tmax 0.2 -o "$T/fr"
+expect 0 "stiff_vres_front2d: check passes to 0.3 s" \
+    "$CASES/stiff_vres_front2d/check" --threads 1 --tmax 0.3 -o "$T/fr"
 cp "$OUT" "$T/fr.result"
 check "the run completed" grep -q -P '^outcome\tcompleted$' "$T/fr.result"
 check "two domains" grep -q -P '^domains\t2$' "$T/fr.result"
@@ -26,6 +26,11 @@ check "no non-finite value in either domain" grep -q -P '^nonfinite_values\t0$' 
 check "segment bound 26.4 kg (32 x 0.4 + 136 x 0.1)" grep -q -P '^segment_bound_kg\t26.4$' "$T/fr.result"
 check "the front entered the box: D1 created particles" \
     awk -v v="$(key "$T/fr.result" ledger_D1)" 'BEGIN {split(v, w, " "); exit !(w[2] > 50)}'
+# from 0.22 s the thin front leaves buffer particles of the box without support, which the
+# exchange deletes: vres-run stops with an internal error if a domain's cells then stay stale
+# (before 567f60a they did, for the next step's forces and the next domain's interpolation)
+check "buffer particles deleted for want of support (ledger.tsv's deleted_nosupport)" \
+    awk -F'\t' 'NR > 1 && !/^#/ && $16 > 0 {n++} END {exit !(n > 0)}' "$T/fr/ledger.tsv"
 check "drift within the bound" awk -v e="$(key "$T/fr.result" error)" -v t="$(key "$T/fr.result" tolerance)" 'BEGIN {exit !(e <= t)}'
 
 # doctored ledgers: the last line of D1 (the file's last line)
