@@ -638,63 +638,83 @@ VRES_HD static inline int vres_sph_row_reaches(const vres_sph_stencil *S, int c,
     return fy * fy + fz * fz < far2;
 }
 
+/* One pass's candidates of the cell-wise loops (vres_sph_interact_v, vres_sph_shift_sums_v). */
+typedef struct vres_sph_cands {
+    double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
+    double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
+    size_t b[VRES_SPH_LIST];                                        /* slot */
+    double in[VRES_SPH_LIST]; /* 1 inside the support (not a itself), else 0; a double, so that the
+                                 distance loop works on one vector type */
+    uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
+} vres_sph_cands;
+
+/* The next pass of particle a's candidates (at xa, ya, za, m) in the ranges of its stencil St,
+ * from range *c at slot *b0 on (both advanced past the pass), ranges whose row lies out of reach
+ * (vres_sph_row_reaches) passed over whole: 1. the offsets and distances of each run of slots
+ * (vector instructions), up to VRES_SPH_LIST; 2. the indices of those inside the support,
+ * a itself left out, into L->kept without a branch. Returns how many were kept. */
+VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass(vres_sph_cands *L, const vres_sph_stencil *St,
+                                                          const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                          int *cp, size_t *b0p, double xa, double ya, double za,
+                                                          const int dim)
+{
+    const int D3 = dim == 3, m = St->m;
+    const vres_cell_range *nb = St->nb;
+    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, far2 = fourh2 * (1 + 1e-6);
+    int c = *cp, nc = 0;
+    size_t b0 = *b0p;
+    for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
+        if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, ya, za, far2)) continue; /* a row out of reach */
+        const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
+        size_t e = nb[c].end;
+        if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
+        const int len = (int)(e - b0);
+        const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
+        double *cdx = L->dx + nc, *cdy = L->dy + nc, *cdz = L->dz + nc, *cr2 = L->r2 + nc, *cin = L->in + nc;
+        size_t *cb = L->b + nc;
+#pragma omp simd
+        for (int j = 0; j < len; j++) {
+            const double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
+            const double dy = D3 ? ya - (yb[j] + sy) : 0.0;
+            const double r2 = D3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
+            cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
+            if (D3) cdy[j] = dy;
+            cin[j] = r2 < fourh2 && r2 >= tiny ? 1.0 : 0.0;
+        }
+        nc += len;
+        b0 = e;
+        if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
+    }
+    *cp = c, *b0p = b0;
+    int nkept = 0;
+    for (int j = 0; j < nc; j++) {
+        L->kept[nkept] = (uint8_t)j;
+        nkept += (int)L->in[j];
+    }
+    return nkept;
+}
+
 /* vres_sph_shift_sums of buffer (or inlet) particle a in the cell-wise loop: its neighbours in
  * the ranges of St (rows out of reach passed over, as vres_sph_interact_v does), positions and
- * the rest from P, dimension dim a compile-time constant in the variants. Each pass computes the
- * distances of a run of slots and keeps the candidates inside the support without a branch
- * (vector instructions, as vres_sph_interact_v's steps 1 and 2), then each kept pair's kernel
- * factor and volume, then adds the terms in pair order: the operations and the order of
- * vres_sph_shift_sums, so the same bits (tests/lib/test_buffer.c). */
+ * the rest from P, dimension dim a compile-time constant in the variants. Each pass keeps the
+ * candidates inside the support (vres_sph_pass, as vres_sph_interact_v's steps 1 and 2), computes
+ * each kept pair's kernel factor and volume, then adds the terms in pair order: the operations
+ * and the order of vres_sph_shift_sums, so the same bits (tests/lib/test_buffer.c). */
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_shift_sums_v(size_t a, const vres_sph_stencil *St,
                                                                  const vres_sph_arrays *P, const vres_sph_consts *C,
                                                                  const int walls, const int kernel, double *shiftv,
                                                                  const int dim)
 {
     const int D3 = dim == 3, m = St->m;
-    const vres_cell_range *nb = St->nb;
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
-    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, far2 = fourh2 * (1 + 1e-6);
     double gcx = 0, gcy = 0, gcz = 0, divr = 0;
     int noshift = 0;
-    struct { /* one pass's candidates */
-        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
-        double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
-        double in[VRES_SPH_LIST];    /* 1 inside the support (not a itself), else 0 */
-        size_t b[VRES_SPH_LIST];     /* slot */
-        uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
-    } L;
+    vres_sph_cands L;
     double F[VRES_SPH_LIST], vol[VRES_SPH_LIST]; /* each kept pair's F(r) (m^-(dim+2)) and V_b (m^3) */
     int c = 0;
-    size_t b0 = m ? nb[0].begin : 0;
+    size_t b0 = m ? St->nb[0].begin : 0;
     while (c < m) {
-        int nc = 0;
-        for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
-            if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, ya, za, far2)) continue;
-            const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
-            size_t e = nb[c].end;
-            if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
-            const int len = (int)(e - b0);
-            const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
-            double *cdx = L.dx + nc, *cdy = L.dy + nc, *cdz = L.dz + nc, *cr2 = L.r2 + nc, *cin = L.in + nc;
-            size_t *cb = L.b + nc;
-#pragma omp simd
-            for (int j = 0; j < len; j++) {
-                const double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
-                const double dy = D3 ? ya - (yb[j] + sy) : 0.0;
-                const double r2 = D3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
-                cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
-                if (D3) cdy[j] = dy;
-                cin[j] = r2 < fourh2 && r2 >= tiny ? 1.0 : 0.0;
-            }
-            nc += len;
-            b0 = e;
-            if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
-        }
-        int nkept = 0;
-        for (int j = 0; j < nc; j++) {
-            L.kept[nkept] = (uint8_t)j;
-            nkept += (int)L.in[j];
-        }
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
         for (int j = 0; j < nkept; j++) {
             const size_t b = L.b[L.kept[j]];
             F[j] = vres_sph_kernel_f(C, kernel, sqrt(L.r2[L.kept[j]]));
@@ -757,7 +777,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
     const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
-    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, eta2 = C->eta2, far2 = fourh2 * (1 + 1e-6);
+    const double eta2 = C->eta2;
     const vres_wendland k = C->k;
     const vres_cubic kc = C->kc;
     const double ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_r(pa, inv_rhoa) : 0.0; /* a's tensile part */
@@ -766,14 +786,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     const double visc_wall = viscosity == VRES_VISC_LAMINAR ? C->nu_wall : C->alpha_wall;
     double accx = 0, accy = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcy = 0, gcz = 0, divr = 0;
     int noshift = 0;
-    struct { /* one pass's candidates */
-        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
-        double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
-        size_t b[VRES_SPH_LIST];                                        /* slot */
-        double in[VRES_SPH_LIST]; /* 1 inside the support (not a itself), else 0; a double, so
-                                     that the distance loop works on one vector type */
-        uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
-    } L;
+    vres_sph_cands L;
     struct { /* the kept pairs: what the physics needs of b */
         double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
         double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
@@ -800,36 +813,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     int c = 0;
     size_t b0 = m ? nb[0].begin : 0;
     while (c < m) {
-        int nc = 0; /* candidates in this pass */
-        for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
-            if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, ya, za, far2)) continue; /* a row out of reach */
-            const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
-            size_t e = nb[c].end;
-            if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
-            const int len = (int)(e - b0);
-            const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
-            double *cdx = L.dx + nc, *cdy = L.dy + nc, *cdz = L.dz + nc, *cr2 = L.r2 + nc, *cin = L.in + nc;
-            size_t *cb = L.b + nc;
-            /* 1: the distances of a run of slots */
-#pragma omp simd
-            for (int j = 0; j < len; j++) {
-                const double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
-                const double dy = D3 ? ya - (yb[j] + sy) : 0.0;
-                const double r2 = D3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
-                cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
-                if (D3) cdy[j] = dy;
-                cin[j] = r2 < fourh2 && r2 >= tiny ? 1.0 : 0.0;
-            }
-            nc += len;
-            b0 = e;
-            if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
-        }
-        /* 2: the kept ones */
-        int nkept = 0;
-        for (int j = 0; j < nc; j++) {
-            L.kept[nkept] = (uint8_t)j;
-            nkept += (int)L.in[j];
-        }
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim); /* 1 and 2 */
         /* 3: their data; a wall particle a (DBC) leaves out its wall and buffer neighbours */
         int np = 0;
         for (int j = 0; j < nkept; j++) {
