@@ -121,39 +121,6 @@ VRES_HD static inline void vres_cells_mark_out_one(size_t i, const vres_cells *g
 VRES_PARTICLE_LOOP(vres_cells_mark_out, vres_cells_mark_out_one,
                    (const vres_cells *g, const double *pos, uint8_t *mark), (g, pos, mark))
 
-/* The non-empty cells among the 3^dim around position x (m), with their periodic shifts, into
- * r[0..27). Returns how many; 0 when x is outside the box. Every particle within the search
- * radius of x (or of an image of it) lies in one of them, each image exactly once. */
-VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const double x[3], vres_cell_range r[27])
-{
-    int c[3], m = 0, dy = g->dim == 2 ? 0 : 1;
-    if (!vres_cells_locate(g, x, c)) return 0;
-    for (int oz = -1; oz <= 1; oz++)
-        for (int oy = -dy; oy <= dy; oy++)
-            for (int ox = -1; ox <= 1; ox++) {
-                int k[3] = {c[0] + ox, c[1] + oy, c[2] + oz}, ok = 1;
-                double s[3] = {0, 0, 0};
-                for (int a = 0; a < 3; a++) {
-                    if (k[a] >= 0 && k[a] < g->nc[a]) continue;
-                    if (!g->periodic[a]) { ok = 0; break; }
-                    /* the cell one past the edge is the first cell on the other side,
-                       with its particles seen one period away */
-                    s[a] = k[a] < 0 ? -g->period[a] : g->period[a];
-                    k[a] = k[a] < 0 ? k[a] + g->nc[a] : k[a] - g->nc[a];
-                }
-                if (!ok) continue;
-                size_t cell = ((size_t)k[2] * (size_t)g->nc[1] + (size_t)k[1]) * (size_t)g->nc[0] + (size_t)k[0];
-                if (g->begin[cell] == g->begin[cell + 1]) continue;
-                r[m].begin = g->begin[cell];
-                r[m].end = g->begin[cell + 1];
-                r[m].shift[0] = s[0];
-                r[m].shift[1] = s[1];
-                r[m].shift[2] = s[2];
-                m++;
-            }
-    return m;
-}
-
 /* Cell index *c along axis a of g, at most one cell past the grid's edge: 1 when it lies in the
  * grid as given (*s = 0) or wrapped across a periodic edge (*c the cell on the other side, *s the
  * shift of its particles' image, -/+ the period, m); 0 when it lies off a non-periodic edge. */
@@ -166,6 +133,32 @@ VRES_HD static inline int vres_cells_wrap_axis(const vres_cells *g, int a, int *
     *s = *c < 0 ? -g->period[a] : g->period[a];
     *c = *c < 0 ? *c + n : *c - n;
     return 1;
+}
+
+/* The non-empty cells among the 3^dim around position x (m), with their periodic shifts, into
+ * r[0..27). Returns how many; 0 when x is outside the box. Every particle within the search
+ * radius of x (or of an image of it) lies in one of them, each image exactly once. */
+VRES_HD static inline int vres_cells_neighbours(const vres_cells *g, const double x[3], vres_cell_range r[27])
+{
+    int c[3], m = 0, dy = g->dim == 2 ? 0 : 1;
+    if (!vres_cells_locate(g, x, c)) return 0;
+    for (int oz = -1; oz <= 1; oz++)
+        for (int oy = -dy; oy <= dy; oy++)
+            for (int ox = -1; ox <= 1; ox++) {
+                int k[3] = {c[0] + ox, c[1] + oy, c[2] + oz}, ok = 1;
+                double s[3] = {0, 0, 0};
+                for (int a = 0; a < 3 && ok; a++) ok = vres_cells_wrap_axis(g, a, &k[a], &s[a]);
+                if (!ok) continue;
+                size_t cell = ((size_t)k[2] * (size_t)g->nc[1] + (size_t)k[1]) * (size_t)g->nc[0] + (size_t)k[0];
+                if (g->begin[cell] == g->begin[cell + 1]) continue;
+                r[m].begin = g->begin[cell];
+                r[m].end = g->begin[cell + 1];
+                r[m].shift[0] = s[0];
+                r[m].shift[1] = s[1];
+                r[m].shift[2] = s[2];
+                m++;
+            }
+    return m;
 }
 
 /* The neighbour ranges of cell (i, j, k) (x, y, z indices; j = 0 in 2D), for every particle in
