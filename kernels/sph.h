@@ -96,6 +96,13 @@ static inline vres_sph_consts vres_sph_consts_make(int dim, double h, double cs0
     return C;
 }
 
+/* 1 when a wall neighbour of type t cancels a particle's shifting under C->shift_mode (1: any
+ * wall, 2: a fixed one, 3: none). */
+VRES_HD static inline int vres_sph_wall_stops_shift(const vres_sph_consts *C, int t)
+{
+    return C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(t));
+}
+
 /* F(r) = (dW/dr)/r (m^-(dim+2)) of kernel (VRES_KERNEL_*; a constant in the interaction's
  * variants, so that the other kernel's code is compiled away) at distance r >= 0 (m). */
 VRES_HD static inline double vres_sph_kernel_f(const vres_sph_consts *C, const int kernel, double r)
@@ -233,9 +240,7 @@ VRES_HD static inline void vres_sph_shift_sums(size_t a, const vres_cell_range *
                the sums are those of a fluid particle at a to the bit */
             const double F = vres_sph_kernel_f(C, kernel, sqrt(r2)), vol = mass[b] * (1.0 / (double)rho[b]);
             const double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
-            if (walls && !vres_type_acts_fluid(type[b]) &&
-                (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(type[b]))))
-                noshift = 1;
+            if (walls && !vres_type_acts_fluid(type[b]) && vres_sph_wall_stops_shift(C, type[b])) noshift = 1;
             for (int k = 0; k < 3; k++) gc[k] += vol * fr[k];
             divr -= y ? vol * (dx[0] * fr[0] + dx[1] * fr[1] + dx[2] * fr[2]) : vol * (dx[0] * fr[0] + dx[2] * fr[2]);
         }
@@ -339,7 +344,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                 diff += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob, dx, r2, inv_r2eta, F);
             if (shift) {
                 double vol = mb * inv_rhob;
-                if (wall_b && (C.shift_mode == 1 || (C.shift_mode == 2 && vres_type_is_fixed(type[b])))) noshift = 1;
+                if (wall_b && vres_sph_wall_stops_shift(&C, type[b])) noshift = 1;
                 gc[0] += vol * fr[0];
                 gc[1] += vol * fr[1];
                 gc[2] += vol * fr[2];
@@ -725,9 +730,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_shift_sums_v(size_t a, const
             const double dx = L.dx[i], dy = D3 ? L.dy[i] : 0.0, dz = L.dz[i];
             const double frx = F[j] * dx, fry = F[j] * dy, frz = F[j] * dz;
             const int tb = P->type[L.b[i]];
-            if (walls && !vres_type_acts_fluid(tb) &&
-                (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(tb))))
-                noshift = 1;
+            if (walls && !vres_type_acts_fluid(tb) && vres_sph_wall_stops_shift(C, tb)) noshift = 1;
             gcx += vol[j] * frx, gcz += vol[j] * frz;
             if (D3) gcy += vol[j] * fry;
             divr -= D3 ? vol[j] * (dx * frx + dy * fry + dz * frz) : vol[j] * (dx * frx + dz * frz);
@@ -826,8 +829,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
             Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
             if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b || float_a ? visc_wall : visc_fluid;
             if (float_a) Q.buf[np] = (uint8_t)vres_type_is_buffer(P->type[b]);
-            if (shift && wall_b && (C->shift_mode == 1 || (C->shift_mode == 2 && vres_type_is_fixed(P->type[b]))))
-                noshift = 1;
+            if (shift && wall_b && vres_sph_wall_stops_shift(C, P->type[b])) noshift = 1;
             np += (fluid_a || !wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b])) &&
                   (fluid_a || float_a || !vres_type_is_buffer(P->type[b])); /* nor buffer particles */
         }
