@@ -50,6 +50,8 @@
 #define VRES_WALLS_FLOATING 2 /* walls, some of them floating bodies' (their forces are summed) */
 
 #define VRES_VISC_ARTIFICIAL 1 /* Monaghan's artificial viscosity, alpha = Visco */
+#define VRES_VISC_SPS 2        /* laminar viscosity plus the SPS turbulence closure (sps.h): the interaction
+                                  runs the laminar variant, sps.h adds the sub-particle stress */
 #define VRES_VISC_LAMINAR 3    /* laminar viscosity (Lo & Shao 2002), nu = Visco (m^2/s) */
 
 /* Smoothing kernels (parameter Kernel, DualSPHysics' numbers). */
@@ -74,6 +76,8 @@ typedef struct vres_sph_consts {
     double g[3];        /* gravity (m/s^2) */
     double nu;          /* laminar kinematic viscosity between fluid particles (m^2/s; Visco) */
     double nu_wall;     /* the same for fluid-wall pairs (Visco * ViscoBoundFactor) (m^2/s) */
+    double sps_smag;    /* SPS: (2/3) (0.12 dp_s)^2, Smagorinsky's constant times the filter width squared (m^2) */
+    double sps_blin;    /* SPS: (2/3) 0.0066 dp_s^2, Blin's constant of the isotropic part (m^2) */
     int shift_mode;     /* Shifting 1: a wall neighbour cancels a particle's shifting, 2: a fixed
                            one does, 3: walls count like fluid (used by the shifting variants only) */
 } vres_sph_consts;
@@ -933,6 +937,26 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     ace[3 * a + 2] = fluid_a ? accz + C->g[2] : float_a ? accz : 0.0;
 }
 
+/* The stencil of cell `cell` of g into *St (no ranges for cell == g->ncells, the slots outside
+ * the grid, which have no neighbours) in dimension dim; returns the slot after the cell's last
+ * (its particles are slots g->begin[cell] .. end - 1), and leaves St unset when it has none. */
+VRES_HD static inline VRES_FORCE_INLINE size_t vres_sph_stencil_make(size_t cell, const vres_cells *g, int dim,
+                                                                     vres_sph_stencil *St)
+{
+    size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
+    St->m = 0;
+    St->ylo = St->yhi = St->zlo = St->zhi = 0;
+    if (g->begin[cell] == end) return end;
+    if (cell < g->ncells) {
+        int c[3];
+        vres_cells_ijk(g, cell, c);
+        St->m = vres_cells_rows(g, c[0], c[1], c[2], St->nb, St->rows);
+        if (dim == 3) St->ylo = g->lo[1] + c[1] * g->cell[1], St->yhi = St->ylo + g->cell[1];
+        St->zlo = g->lo[2] + c[2] * g->cell[2], St->zhi = St->zlo + g->cell[2];
+    }
+    return end;
+}
+
 /* vres_sph_interact_v over the particles of cell `cell` of g (cell == g->ncells: the slots
  * outside the grid, which have no neighbours), the neighbour ranges found once for the cell. */
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vres_cells *g, const vres_sph_arrays *P,
@@ -942,17 +966,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vr
                                                            const int shift, const int dim)
 {
     vres_sph_stencil St;
-    size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
-    St.m = 0;
-    St.ylo = St.yhi = St.zlo = St.zhi = 0;
-    if (g->begin[cell] == end) return;
-    if (cell < g->ncells) {
-        int c[3];
-        vres_cells_ijk(g, cell, c);
-        St.m = vres_cells_rows(g, c[0], c[1], c[2], St.nb, St.rows);
-        if (dim == 3) St.ylo = g->lo[1] + c[1] * g->cell[1], St.yhi = St.ylo + g->cell[1];
-        St.zlo = g->lo[2] + c[2] * g->cell[2], St.zhi = St.zlo + g->cell[2];
-    }
+    const size_t end = vres_sph_stencil_make(cell, g, dim, &St);
     for (size_t a = g->begin[cell]; a < end; a++)
         vres_sph_interact_v(a, &St, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim);
 }

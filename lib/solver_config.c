@@ -214,9 +214,9 @@ static void read_options(const vres_params *P, run_cfg *c, int *bad)
     c->kernel = v == 1 ? VRES_KERNEL_CUBIC : VRES_KERNEL_WENDLAND;
     if (v != 1 && v != 2) not_impl(bad, "Kernel", v, "unknown", "1 (cubic spline), 2 (Wendland)");
     c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", 1);
-    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR)
-        not_impl(bad, "ViscoTreatment", vres_params_get(P, "ViscoTreatment", 1),
-                 c->visco_kind == 2 ? "laminar+SPS" : "unknown", "1 (artificial), 3 (laminar)");
+    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR && c->visco_kind != VRES_VISC_SPS)
+        not_impl(bad, "ViscoTreatment", vres_params_get(P, "ViscoTreatment", 1), "unknown",
+                 "1 (artificial), 2 (laminar+SPS), 3 (laminar)");
     v = vres_params_get(P, "Shifting", 0);
     c->shift = (int)v;
     if (v != c->shift || c->shift < 0 || c->shift > 3)
@@ -392,8 +392,10 @@ char *vres_run_modules(const run_cfg *c, const run_set *set, const char *gpu)
         snprintf(walls, sizeof walls, " mdbc-walls(slip=%s, %zu with normals, viscobound=%g)",
                  c->slip == 2 ? "noslip" : c->slip == 3 ? "freeslip" : "vel0", nnormal, c->visco_bound);
     else if (nwall) snprintf(walls, sizeof walls, " dbc-walls(viscobound=%g)", c->visco_bound);
-    char visc[64];
+    char visc[96];
     if (c->visco_kind == VRES_VISC_LAMINAR) snprintf(visc, sizeof visc, "laminar-viscosity(nu=%g m^2/s)", c->visco);
+    else if (c->visco_kind == VRES_VISC_SPS)
+        snprintf(visc, sizeof visc, "laminar-sps-viscosity(nu=%g m^2/s, cs=0.12, ci=0.0066)", c->visco);
     else snprintf(visc, sizeof visc, "artificial-viscosity(alpha=%g)", c->visco);
     char moving[64] = "";
     if (nmoving) snprintf(moving, sizeof moving, " moving-walls(%zu particles)", nmoving);

@@ -13,6 +13,7 @@
 #include "../kernels/motion.h"
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
+#include "../kernels/sps.h"
 #include "cells.h"
 #include "field.h"
 #include "log.h"
@@ -44,6 +45,8 @@ typedef struct cpu_ctx {
     double *xs;           /* [dim n] positions split by axis for the interaction: x then z (2D), x, y, z (3D) (m) */
     float *v2d;           /* [2n] 2D: x then z velocities (m/s); NULL in 3D */
     double *inv_rho;      /* [n] 1/density of each particle (m^3/kg), for the interaction */
+    double *tau;          /* [6n] laminar+SPS: each particle's sub-particle stress over rho^2 (kernels/sps.h);
+                             NULL for the other viscosities */
     uint8_t *mark;        /* [n] the marks that remove reads (marks, mark_out) */
     vres_interact_v_fn interact;       /* the cell-wise variant without shifting sums (2D or 3D) */
     vres_interact_v_fn interact_shift; /* the same with them; NULL without shifting */
@@ -109,6 +112,22 @@ static void cpu_mdbc(vres_backend *b)
     else vres_mdbc_cpu(d->n, &x->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, x->C, x->c.dim);
 }
 
+/* Laminar+SPS: each particle's sub-particle stress from the current state (the arrays P of the
+ * interaction), then its divergence added to the accelerations (kernels/sps.h's cell-wise loops
+ * for the scene's kernel and dimension). */
+static void cpu_sps(cpu_ctx *x, const vres_sph_arrays *P)
+{
+    const size_t nc = x->cells.ncells + 1;
+    const int cubic = x->c.kernel == VRES_KERNEL_CUBIC, walls = vres_run_pick(&x->c, &x->dc).walls;
+    if (x->c.dim == 2) {
+        (cubic ? vres_sps2d_cubic_tau_cpu : vres_sps2d_tau_cpu)(nc, &x->cells, P, &x->C, x->tau);
+        (cubic ? vres_sps2d_cubic_force_cpu : vres_sps2d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
+    } else {
+        (cubic ? vres_sps3d_cubic_tau_cpu : vres_sps3d_tau_cpu)(nc, &x->cells, P, &x->C, x->tau);
+        (cubic ? vres_sps3d_cubic_force_cpu : vres_sps3d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
+    }
+}
+
 /* mDBC, EOS, then the interaction at the current (cell-sorted) state. */
 static double cpu_forces(vres_backend *b, int shift, double *visc_max)
 {
@@ -128,9 +147,11 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
                                                    d->mass_p, d->type);
     if (c->general)
         vres_sph_general_v_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
-                               vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, c->dim);
+                               vres_run_pick(c, &x->dc).walls, vres_run_pick(c, &x->dc).viscosity, c->kernel, shift,
+                               c->dim);
     else (shift ? x->interact_shift : x->interact)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
                                                    x->shiftv);
+    if (x->tau) cpu_sps(x, &P);
     double amax2 = 0, vmax = 0;
     const double *ace = x->ace, *visc = x->visc;
     const uint8_t *type = d->type;
@@ -400,6 +421,7 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
     add_work(x, &x->xs, (size_t)c->dim * sizeof *x->xs, VRES_WORK_SCRATCH, -1);
     if (c->dim == 2) add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);
     add_work(x, &x->inv_rho, sizeof *x->inv_rho, VRES_WORK_SCRATCH, -1);
+    if (c->visco_kind == VRES_VISC_SPS) add_work(x, &x->tau, 6 * sizeof *x->tau, VRES_WORK_SCRATCH, -1);
     /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);

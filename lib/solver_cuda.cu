@@ -29,6 +29,7 @@ extern "C" { /* the store's C header, first: the headers below include it withou
 #include "../kernels/motion.h"
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
+#include "../kernels/sps.h"
 #include "cells.h"
 #include "field.h"
 #include "solver_int.h"
@@ -67,6 +68,8 @@ typedef struct cuda_ctx {
     double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
     float *v2d;           /* [2n] 2D: x then z velocities (m/s) */
     double *inv_rho;      /* [n] 2D: 1/density (m^3/kg) */
+    double *tau;          /* [6n] laminar+SPS: each particle's sub-particle stress over rho^2 (kernels/sps.h);
+                             NULL for the other viscosities */
 
     vres_cells hc;        /* host mirror of the cells: geometry from vres_cells_init, device begin/perm */
     vres_cells *dcells;   /* device copy of hc, which the kernels read */
@@ -379,14 +382,15 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
             return 0;
         if (c->general)
             vres_sph_general_v_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
-                                    c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, 2);
+                                    c->ddt, vres_run_pick(c, &x->dc).walls, vres_run_pick(c, &x->dc).viscosity,
+                                    c->kernel, shift, 2);
         else
             pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace,
                                                                 x->ar, x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cuda(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p,
                               x->dev.type, x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
-                              vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift);
+                              vres_run_pick(c, &x->dc).walls, vres_run_pick(c, &x->dc).viscosity, c->kernel, shift);
     else if (shift)
         x->interact_shift(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type,
                           x->C, x->ace, x->ar, x->visc, x->shiftv);
@@ -394,6 +398,21 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
         x->interact(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type, x->C,
                     x->ace, x->ar, x->visc);
     if (!launched(x, "interaction")) return 0;
+    if (x->tau) { /* laminar+SPS: tau from the current state, then its divergence (kernels/sps.h) */
+        const int cubic = c->kernel == VRES_KERNEL_CUBIC, walls = vres_run_pick(c, &x->dc).walls;
+        if (c->dim == 2) { /* the cell-wise loops, over the 2D arrays the interaction read */
+            (cubic ? vres_sps2d_cubic_tau_cuda : vres_sps2d_tau_cuda)(x->hc.ncells + 1, x->dcells, x->dP, x->dC,
+                                                                      x->tau);
+            (cubic ? vres_sps2d_cubic_force_cuda : vres_sps2d_force_cuda)(x->hc.ncells + 1, x->dcells, x->dP, x->dC,
+                                                                          walls, x->tau, x->ace);
+        } else {
+            vres_sps_tau_cuda(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.mass_p, x->dev.type, x->C,
+                              c->kernel, x->tau);
+            vres_sps_force_cuda(n, x->dcells, x->dev.pos, x->dev.mass_p, x->dev.type, x->C, walls, c->kernel, x->tau,
+                                x->ace);
+        }
+        if (!launched(x, "SPS stress")) return 0;
+    }
     double *a2 = (double *)x->scratch[2]; /* the 8-byte gather scratch is free between sorts */
     accel2_cuda(n, x->dev.type, x->ace, a2);
     if (!launched(x, "fluid accelerations") ||
@@ -733,6 +752,7 @@ static void cu_work_list(cuda_ctx *x)
     add_work(x, &x->ar, sizeof *x->ar, VRES_WORK_SCRATCH, -1);
     add_work(x, &x->visc, sizeof *x->visc, VRES_WORK_SCRATCH, -1);
     if (c->shift) add_work(x, &x->shiftv, 4 * sizeof *x->shiftv, VRES_WORK_SCRATCH, -1);
+    if (c->visco_kind == VRES_VISC_SPS) add_work(x, &x->tau, 6 * sizeof *x->tau, VRES_WORK_SCRATCH, -1);
     if (c->dim == 2) { /* split by axis: x2d holds n x then n z values, so 2 per particle */
         add_work(x, &x->x2d, 2 * sizeof *x->x2d, VRES_WORK_SCRATCH, -1);
         add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);

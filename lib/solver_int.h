@@ -30,7 +30,7 @@ typedef struct run_cfg {
     double B;             /* Tait stiffness (Pa) */
     double cs0;           /* reference speed of sound (m/s) */
     double cfl;           /* CFL number of the variable time step, in (0, 1] */
-    int visco_kind;       /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment) */
+    int visco_kind;       /* VRES_VISC_ARTIFICIAL, VRES_VISC_SPS or VRES_VISC_LAMINAR (ViscoTreatment) */
     double visco;         /* Visco: artificial viscosity alpha, or laminar kinematic viscosity (m^2/s) */
     double visco_bound;   /* ViscoBoundFactor: multiplies Visco for fluid-wall pairs */
     int ddt;              /* VRES_DDT_* density diffusion kind */

@@ -1,0 +1,297 @@
+/* sps.h - the sub-particle-scale (SPS) turbulence closure of DualSPHysics' laminar+SPS viscosity
+ * (ViscoTreatment=2; Dalrymple & Rogers 2006, Gotoh et al. 2001), written once for the CPU and
+ * CUDA (see device.h). The laminar part is sph.h's laminar pair term; this adds the divergence
+ * of the sub-particle stress tau, an eddy-viscosity (Smagorinsky) model with Blin's isotropic
+ * part, in DualSPHysics' form and constants:
+ *
+ *   strain     E_a = sum_b V_b (v_b - v_a) (x) grad_a W_ab, symmetrised: two_strain =
+ *              (u_x, u_y + v_x, u_z + w_x, v_y, v_z + w_y, w_z)   (1/s; V_b = m_b/rho_b)
+ *   |S|^2      = 2 (u_x^2 + v_y^2 + w_z^2) + (u_y + v_x)^2 + (u_z + w_x)^2 + (v_z + w_y)^2
+ *   nu_t       = smag |S|,  smag = (2/3) (0.12 dp_s)^2,  blin = (2/3) 0.0066 dp_s^2
+ *   tau/rho^2  = (2 nu_t u_x - nu_t div v - blin |S|^2, nu_t (u_y + v_x), ...) / rho_a   (m^2/s^2 / (kg/m^3))
+ *   momentum   dv_a/dt += sum_b m_b (tau_a/rho_a^2 + tau_b/rho_b^2) . grad_a W_ab
+ *
+ * with dp_s = dp/sqrt(2) in 2D and dp/sqrt(3) in 3D (DualSPHysics' JSph::ConfigConstants2: the
+ * factor 2/3 of the isotropic part is folded into smag, so it multiplies nu_t everywhere).
+ * Which particles: fluid and the particles that act as fluid (buffer and inlet/outlet: their
+ * velocity is the coupling's, and their tau enters their fluid neighbours' sums as DualSPHysics'
+ * buffer particles' does) carry a tau, from every neighbour in the support, walls included (with
+ * their velocity, as the laminar term sees them); walls and floating particles carry none. A
+ * fluid particle's acceleration takes the pair sum above (tau_b only from neighbours that act as
+ * fluid); a floating body's particle takes sum_b m_b tau_b/rho_b^2 . grad W over its fluid
+ * neighbours, so that a pair conserves momentum (m_a acc_a = -m_b acc_b); fixed and moving
+ * walls and imposed particles take nothing (their rates are not integrated).
+ *
+ * One difference from DualSPHysics, on purpose: there the momentum equation uses the tau of the
+ * previous force evaluation (a lag of half a step) because the strain is summed in the same loop;
+ * here tau is computed from the current state first (vres_sps_tau_one), then its divergence
+ * (vres_sps_force_one). The model is the same; tau is never stale, and a restart from a
+ * snapshot continues bit for bit, since tau is a function of the state the snapshot holds. */
+#ifndef VRES_KERNELS_SPS_H
+#define VRES_KERNELS_SPS_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cells.h"
+#include "device.h"
+#include "ptype.h"
+#include "sph.h"
+
+/* Smagorinsky's and Blin's constants for spacing dp (m) in dimension dim: *smag = (2/3) (0.12
+ * dp_s)^2 and *blin = (2/3) 0.0066 dp_s^2 (m^2), with dp_s = dp sqrt(2)/2 in 2D and dp sqrt(3)/3
+ * in 3D, as DualSPHysics 5.4. */
+static inline void vres_sps_constants(int dim, double dp, double *smag, double *blin)
+{
+    const double dps = dim == 2 ? sqrt(dp * dp * 2.0) / 2.0 : sqrt(dp * dp * 3.0) / 3.0;
+    *smag = (2.0 / 3.0) * (0.12 * dps) * (0.12 * dps);
+    *blin = (2.0 / 3.0) * 0.0066 * dps * dps;
+}
+
+/* tau/rho^2 of a particle of density rho (kg/m^3) from its two_strain s[6] (xx, xy, xz, yy, yz,
+ * zz: the velocity gradient symmetrised, off-diagonals summed, 1/s) into t[6] (the same order,
+ * m^5/(kg s^2)), with the constants smag and blin (m^2) of vres_sps_constants. */
+VRES_HD static inline void vres_sps_tau_from_strain(const double s[6], double rho, double smag, double blin,
+                                                    double t[6])
+{
+    const double diag2 = s[0] * s[0] + s[3] * s[3] + s[5] * s[5];
+    const double prr = s[1] * s[1] + s[2] * s[2] + s[4] * s[4] + diag2 + diag2; /* |S|^2 (1/s^2) */
+    const double nut = smag * sqrt(prr);                                       /* eddy viscosity (m^2/s) */
+    const double iso = -(nut * (s[0] + s[3] + s[5]) + blin * prr);             /* isotropic part (m^2/s^2) */
+    const double inv_rho = 1.0 / rho;
+    t[0] = inv_rho * (2.0 * nut * s[0] + iso);
+    t[1] = inv_rho * (nut * s[1]);
+    t[2] = inv_rho * (nut * s[2]);
+    t[3] = inv_rho * (2.0 * nut * s[3] + iso);
+    t[4] = inv_rho * (nut * s[4]);
+    t[5] = inv_rho * (2.0 * nut * s[5] + iso);
+}
+
+/* tau/rho^2 of particle a into tau[6a..6a+5] (zero for walls and floating particles): the
+ * two_strain of a summed over its neighbours in the cells g (positions pos [3n] m, velocities
+ * vel [3n] m/s, densities rho kg/m^3, masses kg, types: the domain's arrays in cell order), then
+ * vres_sps_tau_from_strain with C's sps_smag and sps_blin. kernel a VRES_KERNEL_*. */
+VRES_HD static inline void vres_sps_tau_one(size_t a, const vres_cells *g, const double *pos, const float *vel,
+                                            const float *rho, const double *mass, const uint8_t *type,
+                                            vres_sph_consts C, int kernel, double *tau)
+{
+    double *t = &tau[6 * a];
+    if (!vres_type_acts_fluid(type[a])) {
+        t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
+        return;
+    }
+    const double xa[3] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
+    const double va[3] = {vel[3 * a], vel[3 * a + 1], vel[3 * a + 2]};
+    double s[6] = {0, 0, 0, 0, 0, 0};
+    vres_cell_range nb[27];
+    const int m = vres_cells_neighbours(g, xa, nb);
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            const double dx[3] = {xa[0] - (pos[3 * b] + nb[c].shift[0]), xa[1] - (pos[3 * b + 1] + nb[c].shift[1]),
+                                  xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
+            const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+            if (r2 >= C.fourh2 || r2 < 1e-18 * C.fourh2) continue; /* outside the support, or a itself */
+            const double F = vres_sph_kernel_f(&C, kernel, sqrt(r2));
+            const double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
+            /* minus: v_a - v_b below, the gradient wants v_b - v_a; 1/rho as the cell-wise loop's inv_rho */
+            const double vol = -(mass[b] * (1.0 / (double)rho[b]));
+            const double du = (va[0] - vel[3 * b]) * vol, dv = (va[1] - vel[3 * b + 1]) * vol,
+                         dw = (va[2] - vel[3 * b + 2]) * vol;
+            s[0] += du * fr[0];
+            s[1] += du * fr[1] + dv * fr[0];
+            s[2] += du * fr[2] + dw * fr[0];
+            s[3] += dv * fr[1];
+            s[4] += dv * fr[2] + dw * fr[1];
+            s[5] += dw * fr[2];
+        }
+    vres_sps_tau_from_strain(s, rho[a], C.sps_smag, C.sps_blin, t);
+}
+
+/* Add to ace[3a] (m/s^2) the divergence of the sub-particle stress over a's neighbours in the
+ * cells g, with tau/rho^2 of every particle in tau [6n] (vres_sps_tau_one): for a fluid particle
+ * sum_b m_b (tau_a + tau_b) . grad_a W_ab (tau_b of walls and floating particles is zero); for a
+ * floating body's particle (walls VRES_WALLS_FLOATING) sum over its neighbours that act as fluid
+ * of m_b tau_b . grad_a W_ab; nothing for walls and imposed particles. The arrays as
+ * vres_sps_tau_one's; walls a VRES_WALLS_* kind, kernel a VRES_KERNEL_*. */
+VRES_HD static inline void vres_sps_force_one(size_t a, const vres_cells *g, const double *pos, const double *mass,
+                                              const uint8_t *type, vres_sph_consts C, int walls, int kernel,
+                                              const double *tau, double *ace)
+{
+    const int t = type[a];
+    const int fluid_a = vres_type_is_fluid(t);
+    const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(t);
+    if (!fluid_a && !float_a) return;
+    const double xa[3] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
+    const double *ta = &tau[6 * a];
+    double acc[3] = {0, 0, 0};
+    vres_cell_range nb[27];
+    const int m = vres_cells_neighbours(g, xa, nb);
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            if (float_a && !vres_type_acts_fluid(type[b])) continue; /* a body's walls: no tau either side */
+            const double dx[3] = {xa[0] - (pos[3 * b] + nb[c].shift[0]), xa[1] - (pos[3 * b + 1] + nb[c].shift[1]),
+                                  xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
+            const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+            if (r2 >= C.fourh2 || r2 < 1e-18 * C.fourh2) continue;
+            const double F = vres_sph_kernel_f(&C, kernel, sqrt(r2));
+            const double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
+            const double *tb = &tau[6 * b], mb = mass[b];
+            const double sxx = ta[0] + tb[0], sxy = ta[1] + tb[1], sxz = ta[2] + tb[2], syy = ta[3] + tb[3],
+                         syz = ta[4] + tb[4], szz = ta[5] + tb[5];
+            acc[0] += mb * (sxx * fr[0] + sxy * fr[1] + sxz * fr[2]);
+            acc[1] += mb * (sxy * fr[0] + syy * fr[1] + syz * fr[2]);
+            acc[2] += mb * (sxz * fr[0] + syz * fr[1] + szz * fr[2]);
+        }
+    ace[3 * a] += acc[0];
+    ace[3 * a + 1] += acc[1];
+    ace[3 * a + 2] += acc[2];
+}
+
+/* vres_sps_tau_one in the cell-wise loop (sph.h's vres_sph_interact_v): particle a's
+ * neighbours in the ranges of its cell's stencil St, the arrays of P (positions split by axis),
+ * dimension dim and kernel constants in the variants. Each pass keeps the candidates inside the
+ * support (vres_sph_pass), computes their kernel factors and volumes, then adds the terms in
+ * pair order with vres_sps_tau_one's operations (in 2D without the y terms, which are zero
+ * there), so the same bits (tests/lib/test_sps.c). */
+VRES_HD static inline VRES_FORCE_INLINE void vres_sps_tau_v(size_t a, const vres_sph_stencil *St,
+                                                            const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                            const int kernel, double *tau, const int dim)
+{
+    double *t = &tau[6 * a];
+    if (!vres_type_acts_fluid(P->type[a])) {
+        t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
+        return;
+    }
+    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3;
+    const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
+    const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
+    double s[6] = {0, 0, 0, 0, 0, 0};
+    vres_sph_cands L;
+    double F[VRES_SPH_LIST], vol[VRES_SPH_LIST]; /* each kept pair's F(r) (m^-(dim+2)) and -V_b (m^3) */
+    int c = 0;
+    size_t b0 = St->m ? St->nb[0].begin : 0;
+    while (c < St->m) {
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
+        for (int j = 0; j < nkept; j++) {
+            const size_t b = L.b[L.kept[j]];
+            F[j] = vres_sph_kernel_f(C, kernel, sqrt(L.r2[L.kept[j]]));
+            vol[j] = -(P->mass[b] * P->inv_rho[b]);
+        }
+        for (int j = 0; j < nkept; j++) {
+            const int i = L.kept[j];
+            const size_t b = L.b[i];
+            const double frx = F[j] * L.dx[i], frz = F[j] * L.dz[i];
+            const double du = (vxa - P->vx[b * SV]) * vol[j], dw = (vza - P->vz[b * SV]) * vol[j];
+            if (D3) {
+                const double fry = F[j] * L.dy[i], dv = (vya - P->vy[b * SV]) * vol[j];
+                s[0] += du * frx;
+                s[1] += du * fry + dv * frx;
+                s[2] += du * frz + dw * frx;
+                s[3] += dv * fry;
+                s[4] += dv * frz + dw * fry;
+                s[5] += dw * frz;
+            } else {
+                s[0] += du * frx;
+                s[2] += du * frz + dw * frx;
+                s[5] += dw * frz;
+            }
+        }
+    }
+    vres_sps_tau_from_strain(s, P->rho[a], C->sps_smag, C->sps_blin, t);
+}
+
+/* vres_sps_force_one in the cell-wise loop, as vres_sps_tau_v: the same terms in the same order
+ * (in 2D without the y terms, zero there), so the same bits. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_sps_force_v(size_t a, const vres_sph_stencil *St,
+                                                              const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                              const int walls, const int kernel, const double *tau,
+                                                              double *ace, const int dim)
+{
+    const int t = P->type[a], D3 = dim == 3;
+    const int fluid_a = vres_type_is_fluid(t);
+    const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(t);
+    if (!fluid_a && !float_a) return;
+    const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
+    const double *ta = &tau[6 * a];
+    double accx = 0, accy = 0, accz = 0;
+    vres_sph_cands L;
+    double F[VRES_SPH_LIST]; /* each kept pair's F(r) (m^-(dim+2)) */
+    int c = 0;
+    size_t b0 = St->m ? St->nb[0].begin : 0;
+    while (c < St->m) {
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
+        for (int j = 0; j < nkept; j++) F[j] = vres_sph_kernel_f(C, kernel, sqrt(L.r2[L.kept[j]]));
+        for (int j = 0; j < nkept; j++) {
+            const int i = L.kept[j];
+            const size_t b = L.b[i];
+            if (float_a && !vres_type_acts_fluid(P->type[b])) continue; /* a body's walls: no tau either side */
+            const double frx = F[j] * L.dx[i], frz = F[j] * L.dz[i], *tb = &tau[6 * b], mb = P->mass[b];
+            const double sxx = ta[0] + tb[0], sxz = ta[2] + tb[2], szz = ta[5] + tb[5];
+            if (D3) {
+                const double fry = F[j] * L.dy[i], sxy = ta[1] + tb[1], syy = ta[3] + tb[3], syz = ta[4] + tb[4];
+                accx += mb * (sxx * frx + sxy * fry + sxz * frz);
+                accy += mb * (sxy * frx + syy * fry + syz * frz);
+                accz += mb * (sxz * frx + syz * fry + szz * frz);
+            } else {
+                accx += mb * (sxx * frx + sxz * frz);
+                accz += mb * (sxz * frx + szz * frz);
+            }
+        }
+    }
+    ace[3 * a] += accx;
+    ace[3 * a + 1] += accy;
+    ace[3 * a + 2] += accz;
+}
+
+/* VRES_SPS_VARIANT_V(name, kernel, dim): name_tau_cpu / _cuda (n = ncells + 1, g, P, C, tau) and
+ * name_force_cpu / _cuda (n, g, P, C, walls, tau, ace), the cell-wise loops of one kernel and
+ * dimension, each cell's stencil found once (VRES_SPH_CLONES: AVX2 and baseline clones). */
+#define VRES_SPS_VARIANT_V(name, kernel, dim)                                                                     \
+    VRES_HD VRES_SPH_CLONES static inline void name##_tau_one(size_t cell, const vres_cells *g,                   \
+                                                              const vres_sph_arrays *P, const vres_sph_consts *C, \
+                                                              double *tau)                                        \
+    {                                                                                                             \
+        vres_sph_stencil St;                                                                                      \
+        const size_t end = vres_sph_stencil_make(cell, g, dim, &St);                                              \
+        for (size_t a = g->begin[cell]; a < end; a++) vres_sps_tau_v(a, &St, P, C, kernel, tau, dim);              \
+    }                                                                                                             \
+    VRES_CELL_LOOP(name##_tau, name##_tau_one,                                                                    \
+                   (const vres_cells *g, const vres_sph_arrays *P, const vres_sph_consts *C, double *tau),        \
+                   (g, P, C, tau))                                                                                \
+    VRES_HD VRES_SPH_CLONES static inline void name##_force_one(size_t cell, const vres_cells *g,                 \
+                                                                const vres_sph_arrays *P,                         \
+                                                                const vres_sph_consts *C, int walls,              \
+                                                                const double *tau, double *ace)                   \
+    {                                                                                                             \
+        vres_sph_stencil St;                                                                                      \
+        const size_t end = vres_sph_stencil_make(cell, g, dim, &St);                                              \
+        for (size_t a = g->begin[cell]; a < end; a++) vres_sps_force_v(a, &St, P, C, walls, kernel, tau, ace, dim); \
+    }                                                                                                             \
+    VRES_CELL_LOOP(name##_force, name##_force_one,                                                                \
+                   (const vres_cells *g, const vres_sph_arrays *P, const vres_sph_consts *C, int walls,           \
+                    const double *tau, double *ace),                                                              \
+                   (g, P, C, walls, tau, ace))
+
+VRES_SPS_VARIANT_V(vres_sps2d, VRES_KERNEL_WENDLAND, 2)       /* vres_sps2d_tau_cpu, vres_sps2d_force_cpu */
+VRES_SPS_VARIANT_V(vres_sps2d_cubic, VRES_KERNEL_CUBIC, 2)    /* vres_sps2d_cubic_tau_cpu ... */
+/* 3D cell-wise on the CPU only, as sph.h's interaction: the CUDA backend runs the per-particle
+ * loops below in 3D */
+#ifndef __CUDACC__
+VRES_SPS_VARIANT_V(vres_sps3d, VRES_KERNEL_WENDLAND, 3)       /* vres_sps3d_tau_cpu ... */
+VRES_SPS_VARIANT_V(vres_sps3d_cubic, VRES_KERNEL_CUBIC, 3)    /* vres_sps3d_cubic_tau_cpu ... */
+#endif
+
+/* vres_sps_tau_cpu / _cuda (n, g, pos, vel, rho, mass, type, C, kernel, tau). */
+VRES_PARTICLE_LOOP(vres_sps_tau, vres_sps_tau_one,
+                   (const vres_cells *g, const double *pos, const float *vel, const float *rho, const double *mass,
+                    const uint8_t *type, vres_sph_consts C, int kernel, double *tau),
+                   (g, pos, vel, rho, mass, type, C, kernel, tau))
+
+/* vres_sps_force_cpu / _cuda (n, g, pos, mass, type, C, walls, kernel, tau, ace). */
+VRES_PARTICLE_LOOP(vres_sps_force, vres_sps_force_one,
+                   (const vres_cells *g, const double *pos, const double *mass, const uint8_t *type,
+                    vres_sph_consts C, int walls, int kernel, const double *tau, double *ace),
+                   (g, pos, mass, type, C, walls, kernel, tau, ace))
+
+#endif
