@@ -10,15 +10,18 @@
 #include <string.h>
 
 #include "../kernels/sph.h"
+#include "../kernels/sps.h"
 #include "../kernels/wendland.h"
 #include "cells.h"
+#include "field.h"
 #include "log.h"
 #include "owner.h"
 
 /* The interaction settings the store's parameters give, shared by its domains. */
 typedef struct force_cfg {
     int dim;            /* 2 (x-z plane) or 3 */
-    int visco_kind;     /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment) */
+    int visco_kind;     /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR (ViscoTreatment 1, or 3 and 2) */
+    int sps;            /* 1 with laminar+SPS (ViscoTreatment 2): the fluid's sub-particle stress too */
     double visco_wall;  /* Visco * ViscoBoundFactor: alpha, or nu (m^2/s) when laminar */
     double cs0;         /* speed of sound c0 (m/s), in the artificial viscosity */
     int kernel;         /* VRES_KERNEL_CUBIC or VRES_KERNEL_WENDLAND (the store's Kernel, as vres-run) */
@@ -92,11 +95,13 @@ static int read_cfg(const vres_store *s, const char *where, force_cfg *c)
     }
     c->kernel = kernel == 1 ? VRES_KERNEL_CUBIC : VRES_KERNEL_WENDLAND;
     c->visco_kind = (int)vres_params_get(P, "ViscoTreatment", VRES_VISC_ARTIFICIAL);
-    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR) {
-        vres_error("%sViscoTreatment=%g: vres-forces knows 1 (artificial) and 3 (laminar) viscosity", where,
-                   vres_params_get(P, "ViscoTreatment", 1));
+    if (c->visco_kind != VRES_VISC_ARTIFICIAL && c->visco_kind != VRES_VISC_LAMINAR && c->visco_kind != VRES_VISC_SPS) {
+        vres_error("%sViscoTreatment=%g: vres-forces knows 1 (artificial), 2 (laminar+SPS) and 3 (laminar) viscosity",
+                   where, vres_params_get(P, "ViscoTreatment", 1));
         return -1;
     }
+    c->sps = c->visco_kind == VRES_VISC_SPS;
+    if (c->sps) c->visco_kind = VRES_VISC_LAMINAR; /* the laminar pair term, and the stress (fluid_tau) */
     const vres_param *vp = vres_params_find(P, "Visco");
     if (!vp || vp->n < 1 || !(vp->v[0] >= 0)) {
         vres_error("%sno valid parameter Visco: the viscous part of the force needs it", where);
@@ -145,6 +150,7 @@ typedef struct fluid_set {
     float *rho;        /* [n] densities (kg/m^3) */
     float *press;      /* [n] pressures (Pa) */
     double *mass;      /* [n] masses (kg) */
+    double *tau;       /* [6n] laminar+SPS: sub-particle stress over rho^2 (kernels/sps.h); NULL otherwise */
 } fluid_set;
 
 /* Copy the nf fluid particles fidx[] of d, at positions fpos[3 nf], into f, sorted by cell over
@@ -171,6 +177,40 @@ static int fluid_gather(fluid_set *f, const vres_domain *d, const force_cfg *c, 
     return 0;
 }
 
+/* Laminar+SPS: the stress of f's fluid (slot order; fluid_gather's fidx) as the solver computes it
+ * (kernels/sps.h), from the strain over every neighbour in d (walls and buffer particles too):
+ * the whole domain is sorted by cell over the box [lo, hi] (which must hold all of it) in a copy.
+ * Into f->tau. 0, or -1 after printing why. */
+static int fluid_tau(fluid_set *f, const vres_domain *d, const force_cfg *c, const vres_sph_consts *C,
+                     const size_t *fidx, size_t nf, const double lo[3], const double hi[3])
+{
+    vres_domain all;
+    memset(&all, 0, sizeof all);
+    vres_domain_reserve(&all, d->n);
+    for (size_t i = 0; i < d->n; i++) vres_field_copy_particle(&all, i, d, i);
+    all.n = d->n;
+    vres_cells g;
+    int rc = vres_cells_init(&g, c->dim, 2.0 * d->h, lo, hi, c->periodic);
+    if (rc == 0) {
+        vres_cells_build(&g, all.pos, all.n);
+        rc = vres_cells_reorder(&g, &all);
+    }
+    if (rc == 0) {
+        double *tau = vres_xmalloc(6 * all.n * sizeof *tau + 1);
+        size_t *slot = vres_xmalloc(all.n * sizeof *slot + 1); /* particle of d -> its slot in all */
+        for (size_t sl = 0; sl < all.n; sl++) slot[g.perm[sl]] = sl;
+        vres_sps_tau_cpu(all.n, &g, all.pos, all.vel, all.rho, all.mass_p, all.type, *C, c->kernel, tau);
+        f->tau = vres_xmalloc(6 * nf * sizeof *f->tau + 1);
+        for (size_t sl = 0; sl < nf; sl++)
+            memcpy(&f->tau[6 * sl], &tau[6 * slot[fidx[f->cells.perm[sl]]]], 6 * sizeof *tau);
+        free(tau);
+        free(slot);
+    }
+    vres_cells_free(&g);
+    vres_domain_free(&all);
+    return rc;
+}
+
 /* Free what fluid_gather allocated. */
 static void fluid_free(fluid_set *f)
 {
@@ -180,6 +220,7 @@ static void fluid_free(fluid_set *f)
     free(f->rho);
     free(f->press);
     free(f->mass);
+    free(f->tau);
 }
 
 /* Force (N; N/m in 2D) on body particle i of d from the fluid f: m_i times the acceleration of
@@ -215,6 +256,12 @@ static size_t particle_force(const vres_domain *d, size_t i, const fluid_set *f,
                 vres_sph_pair_laminar(C->nu_wall, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc);
             else
                 vres_sph_pair_visc(C, C->alpha_wall, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc);
+            if (f->tau) { /* the fluid's stress (a wall carries none): m_b tau_b/rho_b^2 . grad_a W_ab */
+                const double *t = &f->tau[6 * b];
+                acc[0] += mb * (t[0] * fr[0] + t[1] * fr[1] + t[2] * fr[2]);
+                acc[1] += mb * (t[1] * fr[0] + t[3] * fr[1] + t[4] * fr[2]);
+                acc[2] += mb * (t[2] * fr[0] + t[4] * fr[1] + t[5] * fr[2]);
+            }
             nn++;
         }
     double ma = d->mass_p[i];
@@ -231,6 +278,7 @@ static vres_sph_consts domain_consts(const vres_domain *d, const force_cfg *c)
     C.kernel = c->kernel;
     C.alpha_wall = c->visco_kind == VRES_VISC_ARTIFICIAL ? c->visco_wall : 0;
     C.nu_wall = c->visco_kind == VRES_VISC_LAMINAR ? c->visco_wall : 0;
+    if (c->sps) vres_sps_constants(c->dim, d->dp, &C.sps_smag, &C.sps_blin);
     return C;
 }
 
@@ -275,8 +323,13 @@ static int domain_load(const vres_store *s, size_t k, int mkbound, const force_c
     memset(&f, 0, sizeof f);
     int rc = fluid_gather(&f, d, c, fidx, fpos, nf, lo, hi);
     free(fpos);
+    const vres_sph_consts C = domain_consts(d, c);
+    if (rc == 0 && c->sps) { /* the stress's strain reaches every particle of the domain: its box holds all */
+        double alo[3], ahi[3];
+        cell_box(s, d, c, d->pos, d->n, bpos, nb, alo, ahi);
+        rc = fluid_tau(&f, d, c, &C, fidx, nf, alo, ahi);
+    }
     if (rc == 0) {
-        vres_sph_consts C = domain_consts(d, c);
         double *fa = vres_xmalloc(3 * nb * sizeof *fa);
         size_t wet = 0, out = 0;
 #pragma omp parallel for reduction(+ : wet, out) schedule(dynamic, 64) if (nb >= 2048)

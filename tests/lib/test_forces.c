@@ -2,8 +2,9 @@
  *  - uniform pressure p0 over a flat DBC wall gives the pressure force p0 L per unit width
  *    (derivation below), with the moment of a load centred on the wall's middle;
  *  - for any state, the force on the walls is exactly minus the walls' force on the fluid as
- *    the solver's own interaction (kernels/sph.h, artificial and laminar viscosity) computes
- *    it: sum over fluid of m_b (a_b - g), fluid-fluid pairs cancelling;
+ *    the solver's own interaction (kernels/sph.h, artificial and laminar viscosity, and
+ *    kernels/sps.h's stress with laminar+SPS) computes it: sum over fluid of m_b (a_b - g),
+ *    fluid-fluid pairs cancelling;
  *  - sub-domains add up, each with its own h, and buffer particles, other mkbounds and fluid of
  *    other domains are not counted;
  *  - a wall crossing a refinement box carries what it carries at one resolution (to 8e-10),
@@ -20,6 +21,7 @@
 #include <string.h>
 
 #include "../../kernels/sph.h"
+#include "../../kernels/sps.h"
 #include "cells.h"
 #include "check_run.h"
 #include "forces.h"
@@ -235,7 +237,7 @@ static vres_store *random_scene(int laminar, uint64_t seed)
 {
     const double dp = 0.02;
     vres_store *s = new_store(laminar ? 1e-3 : 0.05);
-    if (laminar) vres_params_set1(&s->params, "ViscoTreatment", 3, "", "xml");
+    if (laminar) vres_params_set1(&s->params, "ViscoTreatment", laminar == 2 ? 2 : 3, "", "xml");
     vres_params_set1(&s->params, "ViscoBoundFactor", 1.7, "", "xml");
     vres_domain *d = vres_store_add_domain(s);
     d->dp = dp;
@@ -263,7 +265,9 @@ static vres_store *random_scene(int laminar, uint64_t seed)
  * particle the solver's acceleration (gravity g included) holds its pairs with fluid, which
  * cancel in the sum over the fluid (each pair term is antisymmetric), and with walls, which
  * are the walls' pair terms with the opposite sign. So sum_walls f = -sum_fluid m_b (a_b - g)
- * to rounding: the same pair terms, kernel, h and fluid-wall viscosity. */
+ * to rounding: the same pair terms, kernel, h and fluid-wall viscosity. laminar 0: artificial
+ * viscosity, 1: laminar, 2: laminar+SPS (the solver adds kernels/sps.h's stress, whose strain
+ * reaches the walls too: vres-forces must take the fluid's stress as the solver has it). */
 static void check_against_solver(int laminar)
 {
     vres_store *s = random_scene(laminar, laminar ? 7 : 3);
@@ -286,6 +290,18 @@ static void check_against_solver(int laminar)
     double *ace = calloc(3 * d->n, sizeof *ace), *ar = calloc(d->n, sizeof *ar), *visc = calloc(d->n, sizeof *visc);
     if (laminar) vres_sph_laminar_dbc_cpu(d->n, &g, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, C, ace, ar, visc);
     else vres_sph_dbc_cpu(d->n, &g, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, C, ace, ar, visc);
+    double sps_part = 0; /* the stress's share of the fluid's wall force, so the test sees it is there */
+    if (laminar == 2) {
+        double *tau = calloc(6 * d->n, sizeof *tau), *a0 = malloc(3 * d->n * sizeof *a0);
+        memcpy(a0, ace, 3 * d->n * sizeof *a0);
+        vres_sps_constants(2, d->dp, &C.sps_smag, &C.sps_blin);
+        vres_sps_tau_cpu(d->n, &g, d->pos, d->vel, d->rho, d->mass_p, d->type, C, VRES_KERNEL_WENDLAND, tau);
+        vres_sps_force_cpu(d->n, &g, d->pos, d->mass_p, d->type, C, VRES_WALLS_DBC, VRES_KERNEL_WENDLAND, tau, ace);
+        for (size_t i = 0; i < d->n; i++)
+            if (d->type[i] == VRES_FLUID) sps_part += d->mass_p[i] * (ace[3 * i] - a0[3 * i]);
+        ck_assert(fabs(sps_part) > 0);
+        free(tau), free(a0);
+    }
     double fluid[3] = {0, 0, 0}, scale = 0;
     for (size_t i = 0; i < d->n; i++) {
         if (d->type[i] != VRES_FLUID) continue;
@@ -312,6 +328,12 @@ END_TEST
 START_TEST(equals_solver_reaction_laminar)
 {
     check_against_solver(1);
+}
+END_TEST
+
+START_TEST(equals_solver_reaction_sps)
+{
+    check_against_solver(2);
 }
 END_TEST
 
@@ -559,6 +581,7 @@ static Suite *forces_suite(void)
     tcase_add_test(tc, uniform_pressure_flat_wall);
     tcase_add_test(tc, equals_solver_reaction_artificial);
     tcase_add_test(tc, equals_solver_reaction_laminar);
+    tcase_add_test(tc, equals_solver_reaction_sps);
     tcase_add_test(tc, domains_add_up);
     tcase_add_test(tc, wall_across_interface);
     tcase_add_test(tc, periodic_wall);
