@@ -50,9 +50,13 @@
 #define VRES_WALLS_FLOATING 2 /* walls, some of them floating bodies' (their forces are summed) */
 
 #define VRES_VISC_ARTIFICIAL 1 /* Monaghan's artificial viscosity, alpha = Visco */
-#define VRES_VISC_SPS 2        /* laminar viscosity plus the SPS turbulence closure (sps.h): the interaction
-                                  runs the laminar variant, sps.h adds the sub-particle stress */
+#define VRES_VISC_SPS 2        /* laminar viscosity plus the SPS turbulence closure: the cell-wise interaction
+                                  also sums each particle's strain into its stress (vres_sps_tau_from_strain),
+                                  sps.h adds the stress's divergence */
 #define VRES_VISC_LAMINAR 3    /* laminar viscosity (Lo & Shao 2002), nu = Visco (m^2/s) */
+
+/* 1 when viscosity kind v has the laminar pair term (laminar, and laminar+SPS). */
+#define VRES_VISC_IS_LAMINAR(v) ((v) == VRES_VISC_LAMINAR || (v) == VRES_VISC_SPS)
 
 /* Smoothing kernels (parameter Kernel, DualSPHysics' numbers). */
 #define VRES_KERNEL_CUBIC 1    /* cubic spline with the tensile correction (cubic.h) */
@@ -338,7 +342,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                                                vres_cubic_tensile(C.kc, r, ra, vres_cubic_tensile_r(press[b], inv_rhob)),
                                                fr, acc);
             else vres_sph_pair_pressure(mb, pa, press[b], inv_rhoa, inv_rhob, fr, acc);
-            double rate = viscosity == VRES_VISC_LAMINAR
+            double rate = VRES_VISC_IS_LAMINAR(viscosity)
                               ? vres_sph_pair_laminar(wall_b || float_a ? C.nu_wall : C.nu, mb, rhoa, rhob, dx, dv,
                                                       inv_r2eta, fr, acc)
                               : vres_sph_pair_visc(&C, wall_b || float_a ? C.alpha_wall : C.alpha, mb, rhoa, rhob, dx,
@@ -563,6 +567,8 @@ typedef struct vres_sph_arrays {
     const double *inv_rho; /* [n] 1/rho, exactly 1.0 / (double)rho (m^3/kg) */
     const double *mass;    /* [n] masses (kg) */
     const uint8_t *type;   /* [n] particle types (kernels/ptype.h) */
+    double *tau;           /* [6n] laminar+SPS: the interaction writes each particle's sub-particle stress over
+                              rho^2 here (vres_sps_tau_from_strain; the one output among these); NULL otherwise */
 } vres_sph_arrays;
 
 /* The distance between consecutive elements of vres_sph_arrays' velocities in dimension dim: 1
@@ -606,6 +612,7 @@ VRES_HD static inline vres_sph_arrays vres_sph_arrays_make(size_t n, int dim, co
         P.vx = vel, P.vy = vel + 1, P.vz = vel + 2;
     }
     P.rho = rho, P.press = press, P.inv_rho = inv_rho, P.mass = mass, P.type = type;
+    P.tau = NULL;
     return P;
 }
 
@@ -746,6 +753,94 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_shift_sums_v(size_t a, const
     shiftv[4 * a + 3] = divr;
 }
 
+/* tau/rho^2 of a particle of density rho (kg/m^3) from its two_strain s[6] (xx, xy, xz, yy, yz,
+ * zz: the velocity gradient symmetrised, off-diagonals summed, 1/s) into t[6] (the same order,
+ * m^5/(kg s^2)), with the constants smag and blin (m^2) of vres_sps_constants. */
+VRES_HD static inline void vres_sps_tau_from_strain(const double s[6], double rho, double smag, double blin,
+                                                    double t[6])
+{
+    const double diag2 = s[0] * s[0] + s[3] * s[3] + s[5] * s[5];
+    const double prr = s[1] * s[1] + s[2] * s[2] + s[4] * s[4] + diag2 + diag2; /* |S|^2 (1/s^2) */
+    const double nut = smag * sqrt(prr);                                       /* eddy viscosity (m^2/s) */
+    const double iso = -(nut * (s[0] + s[3] + s[5]) + blin * prr);             /* isotropic part (m^2/s^2) */
+    const double inv_rho = 1.0 / rho;
+    t[0] = inv_rho * (2.0 * nut * s[0] + iso);
+    t[1] = inv_rho * (nut * s[1]);
+    t[2] = inv_rho * (nut * s[2]);
+    t[3] = inv_rho * (2.0 * nut * s[3] + iso);
+    t[4] = inv_rho * (nut * s[4]);
+    t[5] = inv_rho * (2.0 * nut * s[5] + iso);
+}
+
+/* Laminar+SPS: kernels/sps.h's vres_sps_tau_one in the cell-wise loop, into P->tau: particle a's
+ * neighbours in the ranges of its cell's stencil St, the arrays of P (positions split by axis),
+ * dimension dim and kernel constants in the variants. Each pass keeps the candidates inside the
+ * support (vres_sph_pass), gathers what the terms need of each kept neighbour, computes every
+ * pair's terms with vector instructions, then adds them in pair order: vres_sps_tau_one's
+ * operations and order (in 2D without the y terms, which are zero there), so the same bits
+ * (tests/lib/test_sps.c). vres_sph_interact_v runs it for buffer and inlet particles, and sums
+ * the same terms for fluid ones in its own pass. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres_sph_stencil *St,
+                                                            const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                            const int kernel, const int dim)
+{
+    double *t = &P->tau[6 * a];
+    if (!vres_type_acts_fluid(P->type[a])) {
+        t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
+        return;
+    }
+    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3;
+    const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
+    const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
+    vres_sph_cands L;
+    struct { /* the kept pairs: what the terms need of b, then the terms */
+        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST], r2[VRES_SPH_LIST]; /* m, m^2 */
+        double vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST];                   /* m/s */
+        double m[VRES_SPH_LIST], ir[VRES_SPH_LIST];                                        /* kg, m^3/kg */
+        double t[6][VRES_SPH_LIST]; /* each pair's two_strain terms, xx, xy, xz, yy, yz, zz (1/s) */
+    } Q;
+    int c = 0;
+    size_t b0 = St->m ? St->nb[0].begin : 0;
+    while (c < St->m) {
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
+        for (int j = 0; j < nkept; j++) {
+            const int i = L.kept[j];
+            const size_t b = L.b[i];
+            Q.dx[j] = L.dx[i], Q.dz[j] = L.dz[i], Q.r2[j] = L.r2[i];
+            Q.vx[j] = P->vx[b * SV], Q.vz[j] = P->vz[b * SV];
+            if (D3) Q.dy[j] = L.dy[i], Q.vy[j] = P->vy[b * SV];
+            Q.m[j] = P->mass[b], Q.ir[j] = P->inv_rho[b];
+        }
+#pragma omp simd
+        for (int j = 0; j < nkept; j++) {
+            const double F = vres_sph_kernel_f(C, kernel, sqrt(Q.r2[j]));
+            const double vol = -(Q.m[j] * Q.ir[j]); /* minus: as vres_sps_tau_one */
+            const double frx = F * Q.dx[j], frz = F * Q.dz[j];
+            const double du = (vxa - Q.vx[j]) * vol, dw = (vza - Q.vz[j]) * vol;
+            if (D3) {
+                const double fry = F * Q.dy[j], dv = (vya - Q.vy[j]) * vol;
+                Q.t[0][j] = du * frx;
+                Q.t[1][j] = du * fry + dv * frx;
+                Q.t[2][j] = du * frz + dw * frx;
+                Q.t[3][j] = dv * fry;
+                Q.t[4][j] = dv * frz + dw * fry;
+                Q.t[5][j] = dw * frz;
+            } else {
+                Q.t[0][j] = du * frx;
+                Q.t[2][j] = du * frz + dw * frx;
+                Q.t[5][j] = dw * frz;
+            }
+        }
+        for (int j = 0; j < nkept; j++) {
+            s0 += Q.t[0][j], s2 += Q.t[2][j], s5 += Q.t[5][j];
+            if (D3) s1 += Q.t[1][j], s3 += Q.t[3][j], s4 += Q.t[4][j];
+        }
+    }
+    const double st[6] = {s0, s1, s2, s3, s4, s5};
+    vres_sps_tau_from_strain(st, P->rho[a], C->sps_smag, C->sps_blin, t);
+}
+
 /* vres_sph_interact, cell-wise and vectorised, in dimension dim (a compile-time constant in the
  * variants: 2, the x-z plane, y ignored, where every y offset and y velocity difference would be
  * zero and the sums below are those of vres_sph_interact term for term; or 3). Particle a's
@@ -777,6 +872,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     if (vres_type_is_imposed(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
         if (shift) vres_sph_shift_sums_v(a, St, P, C, walls, kernel, shiftv, dim);
+        if (viscosity == VRES_VISC_SPS) vres_sph_tau_v(a, St, P, C, kernel, dim);
         return;
     }
     const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);
@@ -789,9 +885,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     const vres_cubic kc = C->kc;
     const double ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_r(pa, inv_rhoa) : 0.0; /* a's tensile part */
     /* Visco of a fluid and of a wall neighbour: artificial viscosity alpha or laminar nu */
-    const double visc_fluid = viscosity == VRES_VISC_LAMINAR ? C->nu : C->alpha;
-    const double visc_wall = viscosity == VRES_VISC_LAMINAR ? C->nu_wall : C->alpha_wall;
+    const double visc_fluid = VRES_VISC_IS_LAMINAR(viscosity) ? C->nu : C->alpha;
+    const double visc_wall = VRES_VISC_IS_LAMINAR(viscosity) ? C->nu_wall : C->alpha_wall;
+    const int sps = viscosity == VRES_VISC_SPS && fluid_a; /* sums a's strain (vres_sph_tau_v) */
     double accx = 0, accy = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcy = 0, gcz = 0, divr = 0;
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0; /* laminar+SPS: a's two_strain (1/s) */
     int noshift = 0;
     vres_sph_cands L;
     struct { /* the kept pairs: what the physics needs of b */
@@ -816,6 +914,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
         double diff[VRES_SPH_LIST]; /* density diffusion (kg/m^3/s; 0 for a wall b) */
         double gx[VRES_SPH_LIST], gy[VRES_SPH_LIST], gz[VRES_SPH_LIST]; /* shifting: V_b grad_a W_ab (1/m; gy 3D) */
         double div[VRES_SPH_LIST];  /* shifting: V_b x_ab . grad_a W_ab (subtracted from div r) */
+        double s[6][VRES_SPH_LIST]; /* laminar+SPS: two_strain terms xx, xy, xz, yy, yz, zz (1/s; xy, yy, yz 3D) */
     } T;
     int c = 0;
     size_t b0 = m ? nb[0].begin : 0;
@@ -862,7 +961,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
             T.px[j] = prs * frx;
             T.pz[j] = prs * frz;
             if (D3) T.py[j] = prs * fry;
-            if (viscosity == VRES_VISC_LAMINAR) { /* vres_sph_pair_laminar */
+            if (VRES_VISC_IS_LAMINAR(viscosity)) { /* vres_sph_pair_laminar */
                 const double nu = walls ? Q.visc[j] : visc_fluid;
                 const double xf = D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz;
                 const double vt = mb * 4.0 * nu * xf * inv_r2eta / (rhoa + rhob);
@@ -887,6 +986,18 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                 const double mf = walls && Q.wall[j] != 0 ? 0.0 : mb;
                 T.diff[j] = C->ddt_khc * drho * F * r2 * inv_r2eta * mf * inv_rhob;
             }
+            if (sps) { /* vres_sph_tau_v's terms, operation for operation */
+                const double svol = -(mb * inv_rhob), du = dvx * svol, dw = dvz * svol;
+                T.s[0][j] = du * frx;
+                T.s[2][j] = du * frz + dw * frx;
+                T.s[5][j] = dw * frz;
+                if (D3) {
+                    const double dv = dvy * svol;
+                    T.s[1][j] = du * fry + dv * frx;
+                    T.s[3][j] = dv * fry;
+                    T.s[4][j] = dv * frz + dw * fry;
+                }
+            }
             if (shift) {
                 const double vol = mb * inv_rhob;
                 T.gx[j] = vol * frx;
@@ -906,7 +1017,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                 accx -= T.px[j];
                 if (D3) accy -= T.py[j];
                 accz -= T.pz[j];
-                if (viscosity == VRES_VISC_LAMINAR) {
+                if (VRES_VISC_IS_LAMINAR(viscosity)) {
                     accx += T.vx[j];
                     if (D3) accy += T.vy[j];
                     accz += T.vz[j];
@@ -923,6 +1034,18 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                     divr -= T.div[j];
                 }
             }
+        if (sps)
+            for (int j = 0; j < np; j++) {
+                s0 += T.s[0][j], s2 += T.s[2][j], s5 += T.s[5][j];
+                if (D3) s1 += T.s[1][j], s3 += T.s[3][j], s4 += T.s[4][j];
+            }
+    }
+    if (viscosity == VRES_VISC_SPS) { /* a's stress; none for walls and floating particles */
+        double *t = &P->tau[6 * a];
+        if (sps) {
+            const double st[6] = {s0, s1, s2, s3, s4, s5};
+            vres_sps_tau_from_strain(st, rhoa, C->sps_smag, C->sps_blin, t);
+        } else t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
     }
     if (shift && fluid_a) {
         shiftv[4 * a] = noshift ? NAN : gcx;
@@ -1011,8 +1134,9 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vr
 #define VRES_SPH_VARIANTS_V(prefix, viscosity, kernel, shift, dim) \
     VRES_SPH_NINE(VRES_SPH_VARIANT_V, prefix, viscosity, kernel, shift, dim)
 
-/* The eight families of one dimension: vres_sph<dim>d_plain ..., _laminar_, _shift_,
- * _shift_laminar_ and the cubic spline's four. */
+/* The twelve families of one dimension: vres_sph<dim>d_plain ..., _laminar_, _shift_,
+ * _shift_laminar_, the cubic spline's four, and laminar+SPS's four (_sps_, _shift_sps_, _cubic_sps_,
+ * _cubic_shift_sps_). */
 #define VRES_SPH_FAMILIES_V(pre, dim)                                                          \
     VRES_SPH_VARIANTS_V(pre##_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0, dim)           \
     VRES_SPH_VARIANTS_V(pre##_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_WENDLAND, 0, dim)      \
@@ -1021,7 +1145,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vr
     VRES_SPH_VARIANTS_V(pre##_cubic_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_CUBIC, 0, dim)        \
     VRES_SPH_VARIANTS_V(pre##_cubic_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC, 0, dim)   \
     VRES_SPH_VARIANTS_V(pre##_cubic_shift_, VRES_VISC_ARTIFICIAL, VRES_KERNEL_CUBIC, 1, dim)  \
-    VRES_SPH_VARIANTS_V(pre##_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC, 1, dim)
+    VRES_SPH_VARIANTS_V(pre##_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_KERNEL_CUBIC, 1, dim) \
+    VRES_SPH_VARIANTS_V(pre##_sps_, VRES_VISC_SPS, VRES_KERNEL_WENDLAND, 0, dim)                 \
+    VRES_SPH_VARIANTS_V(pre##_shift_sps_, VRES_VISC_SPS, VRES_KERNEL_WENDLAND, 1, dim)           \
+    VRES_SPH_VARIANTS_V(pre##_cubic_sps_, VRES_VISC_SPS, VRES_KERNEL_CUBIC, 0, dim)              \
+    VRES_SPH_VARIANTS_V(pre##_cubic_shift_sps_, VRES_VISC_SPS, VRES_KERNEL_CUBIC, 1, dim)
 
 VRES_SPH_FAMILIES_V(vres_sph2d, 2) /* vres_sph2d_plain ... vres_sph2d_cubic_shift_laminar_flt_fourtakas */
 /* The 3D cell-wise variants on the CPU only: a GPU thread per cell would leave most of the device

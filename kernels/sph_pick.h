@@ -11,7 +11,8 @@
 
 /* What picks an interaction variant: the options a scene fixes for its whole run. */
 typedef struct vres_sph_pick {
-    int viscosity;      /* VRES_VISC_ARTIFICIAL or VRES_VISC_LAMINAR */
+    int viscosity;      /* VRES_VISC_ARTIFICIAL, VRES_VISC_LAMINAR or VRES_VISC_SPS (the per-particle loops run
+                           the laminar variant for it, the cell-wise ones their own) */
     int walls;          /* VRES_WALLS_*: none, walls, walls with floating bodies */
     int ddt;            /* VRES_DDT_* density diffusion kind */
     int kernel;         /* VRES_KERNEL_CUBIC or VRES_KERNEL_WENDLAND */
@@ -48,29 +49,35 @@ typedef void (*vres_interact_v_fn)(size_t n, const vres_cells *g, const vres_sph
         static const vres_interact_fn table[2][2][3][3] = {                                            \
             {VRES_SPH_ROW9(vres_sph_, sfx), VRES_SPH_ROW9(vres_sph_laminar_, sfx)},                    \
             {VRES_SPH_ROW9(vres_sph_cubic_, sfx), VRES_SPH_ROW9(vres_sph_cubic_laminar_, sfx)}};       \
-        return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
+        return table[p.kernel == VRES_KERNEL_CUBIC][VRES_VISC_IS_LAMINAR(p.viscosity)][p.walls][p.ddt]; \
     }                                                                                                  \
     static inline vres_interact_shift_fn pick_interaction_shift(vres_sph_pick p)                       \
     {                                                                                                  \
         static const vres_interact_shift_fn table[2][2][3][3] = {                                      \
             {VRES_SPH_ROW9(vres_sph_shift_, sfx), VRES_SPH_ROW9(vres_sph_shift_laminar_, sfx)},        \
             {VRES_SPH_ROW9(vres_sph_cubic_shift_, sfx), VRES_SPH_ROW9(vres_sph_cubic_shift_laminar_, sfx)}}; \
-        return table[p.kernel == VRES_KERNEL_CUBIC][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
+        return table[p.kernel == VRES_KERNEL_CUBIC][VRES_VISC_IS_LAMINAR(p.viscosity)][p.walls][p.ddt]; \
     }
 
 /* pick_interaction<D>d (p, shift): the cell-wise variant (vres_sph<D>d_*, shift 0 or 1) for the
- * scene's options p, over the loops with suffix sfx, as above; D is 2 (both backends) or 3 (the
+ * scene's options p, over the loops with suffix sfx, as above (laminar+SPS has its own, which
+ * write the stress into the arrays' tau); D is 2 (both backends) or 3 (the
  * CPU's only: VRES_SPH_FAMILIES_V in sph.h). */
 #define VRES_SPH_PICKER_CELLS(sfx, D)                                                                  \
     static inline vres_interact_v_fn pick_interaction##D##d(vres_sph_pick p, int shift)                \
     {                                                                                                  \
-        static const vres_interact_v_fn table[2][2][2][3][3] = {                                       \
-            {{VRES_SPH_ROW9(vres_sph##D##d_, sfx), VRES_SPH_ROW9(vres_sph##D##d_laminar_, sfx)},       \
-             {VRES_SPH_ROW9(vres_sph##D##d_shift_, sfx), VRES_SPH_ROW9(vres_sph##D##d_shift_laminar_, sfx)}}, \
-            {{VRES_SPH_ROW9(vres_sph##D##d_cubic_, sfx), VRES_SPH_ROW9(vres_sph##D##d_cubic_laminar_, sfx)}, \
+        static const vres_interact_v_fn table[2][2][3][3][3] = {                                       \
+            {{VRES_SPH_ROW9(vres_sph##D##d_, sfx), VRES_SPH_ROW9(vres_sph##D##d_laminar_, sfx),        \
+              VRES_SPH_ROW9(vres_sph##D##d_sps_, sfx)},                                                \
+             {VRES_SPH_ROW9(vres_sph##D##d_shift_, sfx), VRES_SPH_ROW9(vres_sph##D##d_shift_laminar_, sfx), \
+              VRES_SPH_ROW9(vres_sph##D##d_shift_sps_, sfx)}},                                         \
+            {{VRES_SPH_ROW9(vres_sph##D##d_cubic_, sfx), VRES_SPH_ROW9(vres_sph##D##d_cubic_laminar_, sfx), \
+              VRES_SPH_ROW9(vres_sph##D##d_cubic_sps_, sfx)},                                          \
              {VRES_SPH_ROW9(vres_sph##D##d_cubic_shift_, sfx),                                         \
-              VRES_SPH_ROW9(vres_sph##D##d_cubic_shift_laminar_, sfx)}}};                              \
-        return table[p.kernel == VRES_KERNEL_CUBIC][shift][p.viscosity == VRES_VISC_LAMINAR][p.walls][p.ddt]; \
+              VRES_SPH_ROW9(vres_sph##D##d_cubic_shift_laminar_, sfx),                                 \
+              VRES_SPH_ROW9(vres_sph##D##d_cubic_shift_sps_, sfx)}}};                                  \
+        const int v = p.viscosity == VRES_VISC_SPS ? 2 : p.viscosity == VRES_VISC_LAMINAR;             \
+        return table[p.kernel == VRES_KERNEL_CUBIC][shift][v][p.walls][p.ddt];                         \
     }
 
 #endif

@@ -24,9 +24,11 @@
  *
  * One difference from DualSPHysics, on purpose: there the momentum equation uses the tau of the
  * previous force evaluation (a lag of half a step) because the strain is summed in the same loop;
- * here tau is computed from the current state first (vres_sps_tau_one), then its divergence
- * (vres_sps_force_one). The model is the same; tau is never stale, and a restart from a
- * snapshot continues bit for bit, since tau is a function of the state the snapshot holds. */
+ * here tau is computed from the current state first (vres_sps_tau_one; in the backends the
+ * interaction's laminar+SPS variants sum the strain in their own pass, sph.h's vres_sph_tau_v and
+ * VRES_VISC_SPS), then its divergence (vres_sps_force_one, and its cell-wise form below). The
+ * model is the same; tau is never stale, and a restart from a snapshot continues bit for bit,
+ * since tau is a function of the state the snapshot holds. */
 #ifndef VRES_KERNELS_SPS_H
 #define VRES_KERNELS_SPS_H
 
@@ -47,25 +49,6 @@ static inline void vres_sps_constants(int dim, double dp, double *smag, double *
     const double dps = dim == 2 ? sqrt(dp * dp * 2.0) / 2.0 : sqrt(dp * dp * 3.0) / 3.0;
     *smag = (2.0 / 3.0) * (0.12 * dps) * (0.12 * dps);
     *blin = (2.0 / 3.0) * 0.0066 * dps * dps;
-}
-
-/* tau/rho^2 of a particle of density rho (kg/m^3) from its two_strain s[6] (xx, xy, xz, yy, yz,
- * zz: the velocity gradient symmetrised, off-diagonals summed, 1/s) into t[6] (the same order,
- * m^5/(kg s^2)), with the constants smag and blin (m^2) of vres_sps_constants. */
-VRES_HD static inline void vres_sps_tau_from_strain(const double s[6], double rho, double smag, double blin,
-                                                    double t[6])
-{
-    const double diag2 = s[0] * s[0] + s[3] * s[3] + s[5] * s[5];
-    const double prr = s[1] * s[1] + s[2] * s[2] + s[4] * s[4] + diag2 + diag2; /* |S|^2 (1/s^2) */
-    const double nut = smag * sqrt(prr);                                       /* eddy viscosity (m^2/s) */
-    const double iso = -(nut * (s[0] + s[3] + s[5]) + blin * prr);             /* isotropic part (m^2/s^2) */
-    const double inv_rho = 1.0 / rho;
-    t[0] = inv_rho * (2.0 * nut * s[0] + iso);
-    t[1] = inv_rho * (nut * s[1]);
-    t[2] = inv_rho * (nut * s[2]);
-    t[3] = inv_rho * (2.0 * nut * s[3] + iso);
-    t[4] = inv_rho * (nut * s[4]);
-    t[5] = inv_rho * (2.0 * nut * s[5] + iso);
 }
 
 /* tau/rho^2 of particle a into tau[6a..6a+5] (zero for walls and floating particles): the
@@ -148,59 +131,6 @@ VRES_HD static inline void vres_sps_force_one(size_t a, const vres_cells *g, con
     ace[3 * a + 2] += acc[2];
 }
 
-/* vres_sps_tau_one in the cell-wise loop (sph.h's vres_sph_interact_v): particle a's
- * neighbours in the ranges of its cell's stencil St, the arrays of P (positions split by axis),
- * dimension dim and kernel constants in the variants. Each pass keeps the candidates inside the
- * support (vres_sph_pass), computes their kernel factors and volumes, then adds the terms in
- * pair order with vres_sps_tau_one's operations (in 2D without the y terms, which are zero
- * there), so the same bits (tests/lib/test_sps.c). */
-VRES_HD static inline VRES_FORCE_INLINE void vres_sps_tau_v(size_t a, const vres_sph_stencil *St,
-                                                            const vres_sph_arrays *P, const vres_sph_consts *C,
-                                                            const int kernel, double *tau, const int dim)
-{
-    double *t = &tau[6 * a];
-    if (!vres_type_acts_fluid(P->type[a])) {
-        t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
-        return;
-    }
-    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3;
-    const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
-    const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
-    double s[6] = {0, 0, 0, 0, 0, 0};
-    vres_sph_cands L;
-    double F[VRES_SPH_LIST], vol[VRES_SPH_LIST]; /* each kept pair's F(r) (m^-(dim+2)) and -V_b (m^3) */
-    int c = 0;
-    size_t b0 = St->m ? St->nb[0].begin : 0;
-    while (c < St->m) {
-        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
-        for (int j = 0; j < nkept; j++) {
-            const size_t b = L.b[L.kept[j]];
-            F[j] = vres_sph_kernel_f(C, kernel, sqrt(L.r2[L.kept[j]]));
-            vol[j] = -(P->mass[b] * P->inv_rho[b]);
-        }
-        for (int j = 0; j < nkept; j++) {
-            const int i = L.kept[j];
-            const size_t b = L.b[i];
-            const double frx = F[j] * L.dx[i], frz = F[j] * L.dz[i];
-            const double du = (vxa - P->vx[b * SV]) * vol[j], dw = (vza - P->vz[b * SV]) * vol[j];
-            if (D3) {
-                const double fry = F[j] * L.dy[i], dv = (vya - P->vy[b * SV]) * vol[j];
-                s[0] += du * frx;
-                s[1] += du * fry + dv * frx;
-                s[2] += du * frz + dw * frx;
-                s[3] += dv * fry;
-                s[4] += dv * frz + dw * fry;
-                s[5] += dw * frz;
-            } else {
-                s[0] += du * frx;
-                s[2] += du * frz + dw * frx;
-                s[5] += dw * frz;
-            }
-        }
-    }
-    vres_sps_tau_from_strain(s, P->rho[a], C->sps_smag, C->sps_blin, t);
-}
-
 /* vres_sps_force_one in the cell-wise loop, as vres_sps_tau_v: the same terms in the same order
  * (in 2D without the y terms, zero there), so the same bits. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_sps_force_v(size_t a, const vres_sph_stencil *St,
@@ -213,30 +143,49 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sps_force_v(size_t a, const vr
     const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(t);
     if (!fluid_a && !float_a) return;
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
-    const double *ta = &tau[6 * a];
+    const double ta0 = tau[6 * a], ta1 = tau[6 * a + 1], ta2 = tau[6 * a + 2], ta3 = tau[6 * a + 3],
+                 ta4 = tau[6 * a + 4], ta5 = tau[6 * a + 5];
     double accx = 0, accy = 0, accz = 0;
     vres_sph_cands L;
-    double F[VRES_SPH_LIST]; /* each kept pair's F(r) (m^-(dim+2)) */
+    struct { /* the pairs that take a term: what the terms need of b, then the terms */
+        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST], r2[VRES_SPH_LIST]; /* m, m^2 */
+        double m[VRES_SPH_LIST];                                                           /* kg */
+        double tb[6][VRES_SPH_LIST];  /* b's tau/rho^2 */
+        double f[3][VRES_SPH_LIST];   /* each pair's acceleration term (m/s^2) */
+    } Q;
     int c = 0;
     size_t b0 = St->m ? St->nb[0].begin : 0;
     while (c < St->m) {
         const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
-        for (int j = 0; j < nkept; j++) F[j] = vres_sph_kernel_f(C, kernel, sqrt(L.r2[L.kept[j]]));
+        int np = 0;
         for (int j = 0; j < nkept; j++) {
             const int i = L.kept[j];
             const size_t b = L.b[i];
             if (float_a && !vres_type_acts_fluid(P->type[b])) continue; /* a body's walls: no tau either side */
-            const double frx = F[j] * L.dx[i], frz = F[j] * L.dz[i], *tb = &tau[6 * b], mb = P->mass[b];
-            const double sxx = ta[0] + tb[0], sxz = ta[2] + tb[2], szz = ta[5] + tb[5];
+            Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i], Q.m[np] = P->mass[b];
+            if (D3) Q.dy[np] = L.dy[i];
+            for (int k = 0; k < 6; k++) Q.tb[k][np] = tau[6 * b + k];
+            np++;
+        }
+#pragma omp simd
+        for (int j = 0; j < np; j++) {
+            const double F = vres_sph_kernel_f(C, kernel, sqrt(Q.r2[j]));
+            const double frx = F * Q.dx[j], frz = F * Q.dz[j], mb = Q.m[j];
+            const double sxx = ta0 + Q.tb[0][j], sxz = ta2 + Q.tb[2][j], szz = ta5 + Q.tb[5][j];
             if (D3) {
-                const double fry = F[j] * L.dy[i], sxy = ta[1] + tb[1], syy = ta[3] + tb[3], syz = ta[4] + tb[4];
-                accx += mb * (sxx * frx + sxy * fry + sxz * frz);
-                accy += mb * (sxy * frx + syy * fry + syz * frz);
-                accz += mb * (sxz * frx + syz * fry + szz * frz);
+                const double fry = F * Q.dy[j], sxy = ta1 + Q.tb[1][j], syy = ta3 + Q.tb[3][j],
+                             syz = ta4 + Q.tb[4][j];
+                Q.f[0][j] = mb * (sxx * frx + sxy * fry + sxz * frz);
+                Q.f[1][j] = mb * (sxy * frx + syy * fry + syz * frz);
+                Q.f[2][j] = mb * (sxz * frx + syz * fry + szz * frz);
             } else {
-                accx += mb * (sxx * frx + sxz * frz);
-                accz += mb * (sxz * frx + szz * frz);
+                Q.f[0][j] = mb * (sxx * frx + sxz * frz);
+                Q.f[2][j] = mb * (sxz * frx + szz * frz);
             }
+        }
+        for (int j = 0; j < np; j++) {
+            accx += Q.f[0][j], accz += Q.f[2][j];
+            if (D3) accy += Q.f[1][j];
         }
     }
     ace[3 * a] += accx;
@@ -244,21 +193,15 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sps_force_v(size_t a, const vr
     ace[3 * a + 2] += accz;
 }
 
-/* VRES_SPS_VARIANT_V(name, kernel, dim): name_tau_cpu / _cuda (n = ncells + 1, g, P, C, tau) and
- * name_force_cpu / _cuda (n, g, P, C, walls, tau, ace), the cell-wise loops of one kernel and
- * dimension, each cell's stencil found once (VRES_SPH_CLONES: AVX2 and baseline clones). */
+/* A cell-wise stress-divergence loop (vres_sps2d_force_*, vres_sps3d_force_*), over n = ncells + 1 cells. */
+typedef void (*vres_sps_force_v_fn)(size_t n, const vres_cells *g, const vres_sph_arrays *P, const vres_sph_consts *C,
+                                    int walls, const double *tau, double *ace);
+
+/* VRES_SPS_VARIANT_V(name, kernel, dim): name_force_cpu / _cuda (n = ncells + 1, g, P, C, walls,
+ * tau, ace), the cell-wise loop of one kernel and dimension, each cell's stencil found once
+ * (VRES_SPH_CLONES: AVX2 and baseline clones). The stress itself comes from the interaction's
+ * laminar+SPS variants (sph.h's vres_sph<dim>d_*sps_*), which sum the strain in their own pass. */
 #define VRES_SPS_VARIANT_V(name, kernel, dim)                                                                     \
-    VRES_HD VRES_SPH_CLONES static inline void name##_tau_one(size_t cell, const vres_cells *g,                   \
-                                                              const vres_sph_arrays *P, const vres_sph_consts *C, \
-                                                              double *tau)                                        \
-    {                                                                                                             \
-        vres_sph_stencil St;                                                                                      \
-        const size_t end = vres_sph_stencil_make(cell, g, dim, &St);                                              \
-        for (size_t a = g->begin[cell]; a < end; a++) vres_sps_tau_v(a, &St, P, C, kernel, tau, dim);              \
-    }                                                                                                             \
-    VRES_CELL_LOOP(name##_tau, name##_tau_one,                                                                    \
-                   (const vres_cells *g, const vres_sph_arrays *P, const vres_sph_consts *C, double *tau),        \
-                   (g, P, C, tau))                                                                                \
     VRES_HD VRES_SPH_CLONES static inline void name##_force_one(size_t cell, const vres_cells *g,                 \
                                                                 const vres_sph_arrays *P,                         \
                                                                 const vres_sph_consts *C, int walls,              \
@@ -273,13 +216,13 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sps_force_v(size_t a, const vr
                     const double *tau, double *ace),                                                              \
                    (g, P, C, walls, tau, ace))
 
-VRES_SPS_VARIANT_V(vres_sps2d, VRES_KERNEL_WENDLAND, 2)       /* vres_sps2d_tau_cpu, vres_sps2d_force_cpu */
-VRES_SPS_VARIANT_V(vres_sps2d_cubic, VRES_KERNEL_CUBIC, 2)    /* vres_sps2d_cubic_tau_cpu ... */
+VRES_SPS_VARIANT_V(vres_sps2d, VRES_KERNEL_WENDLAND, 2)    /* vres_sps2d_force_cpu / _cuda */
+VRES_SPS_VARIANT_V(vres_sps2d_cubic, VRES_KERNEL_CUBIC, 2) /* vres_sps2d_cubic_force_cpu / _cuda */
 /* 3D cell-wise on the CPU only, as sph.h's interaction: the CUDA backend runs the per-particle
  * loops below in 3D */
 #ifndef __CUDACC__
-VRES_SPS_VARIANT_V(vres_sps3d, VRES_KERNEL_WENDLAND, 3)       /* vres_sps3d_tau_cpu ... */
-VRES_SPS_VARIANT_V(vres_sps3d_cubic, VRES_KERNEL_CUBIC, 3)    /* vres_sps3d_cubic_tau_cpu ... */
+VRES_SPS_VARIANT_V(vres_sps3d, VRES_KERNEL_WENDLAND, 3)    /* vres_sps3d_force_cpu */
+VRES_SPS_VARIANT_V(vres_sps3d_cubic, VRES_KERNEL_CUBIC, 3) /* vres_sps3d_cubic_force_cpu */
 #endif
 
 /* vres_sps_tau_cpu / _cuda (n, g, pos, vel, rho, mass, type, C, kernel, tau). */

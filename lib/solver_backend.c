@@ -37,9 +37,7 @@ vres_wall_body *vres_wall_bodies(const vres_store *s)
 
 vres_sph_pick vres_run_pick(const run_cfg *c, const run_dom *dc)
 {
-    /* laminar+SPS runs the laminar interaction; the backends add the SPS stress (kernels/sps.h) */
-    const int visc = c->visco_kind == VRES_VISC_SPS ? VRES_VISC_LAMINAR : c->visco_kind;
-    vres_sph_pick p = {visc, dc->nfloating ? VRES_WALLS_FLOATING : dc->nwall ? VRES_WALLS_DBC : VRES_WALLS_NONE,
+    vres_sph_pick p = {c->visco_kind, dc->nfloating ? VRES_WALLS_FLOATING : dc->nwall ? VRES_WALLS_DBC : VRES_WALLS_NONE,
                        c->ddt, c->kernel};
     return p;
 }

@@ -112,20 +112,15 @@ static void cpu_mdbc(vres_backend *b)
     else vres_mdbc_cpu(d->n, &x->cells, d->pos, d->rho, d->mass_p, d->type, d->normal, x->C, x->c.dim);
 }
 
-/* Laminar+SPS: each particle's sub-particle stress from the current state (the arrays P of the
- * interaction), then its divergence added to the accelerations (kernels/sps.h's cell-wise loops
- * for the scene's kernel and dimension). */
+/* Laminar+SPS: the divergence of the sub-particle stress that the interaction left in x->tau,
+ * added to the accelerations (kernels/sps.h's cell-wise loop for the scene's kernel and
+ * dimension, over the interaction's arrays P). */
 static void cpu_sps(cpu_ctx *x, const vres_sph_arrays *P)
 {
     const size_t nc = x->cells.ncells + 1;
     const int cubic = x->c.kernel == VRES_KERNEL_CUBIC, walls = vres_run_pick(&x->c, &x->dc).walls;
-    if (x->c.dim == 2) {
-        (cubic ? vres_sps2d_cubic_tau_cpu : vres_sps2d_tau_cpu)(nc, &x->cells, P, &x->C, x->tau);
-        (cubic ? vres_sps2d_cubic_force_cpu : vres_sps2d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
-    } else {
-        (cubic ? vres_sps3d_cubic_tau_cpu : vres_sps3d_tau_cpu)(nc, &x->cells, P, &x->C, x->tau);
-        (cubic ? vres_sps3d_cubic_force_cpu : vres_sps3d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
-    }
+    if (x->c.dim == 2) (cubic ? vres_sps2d_cubic_force_cpu : vres_sps2d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
+    else (cubic ? vres_sps3d_cubic_force_cpu : vres_sps3d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
 }
 
 /* mDBC, EOS, then the interaction at the current (cell-sorted) state. */
@@ -143,12 +138,12 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
     const size_t n = d->n;
     vres_sph_split_cpu(n, n, c->dim, d->pos, d->vel, d->rho, x->xs, x->v2d, x->inv_rho);
-    const vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, d->vel, x->v2d, d->rho, d->press, x->inv_rho,
-                                                   d->mass_p, d->type);
+    vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, d->vel, x->v2d, d->rho, d->press, x->inv_rho,
+                                             d->mass_p, d->type);
+    P.tau = x->tau; /* laminar+SPS: the interaction writes the stress there */
     if (c->general)
         vres_sph_general_v_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
-                               vres_run_pick(c, &x->dc).walls, vres_run_pick(c, &x->dc).viscosity, c->kernel, shift,
-                               c->dim);
+                               vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, c->dim);
     else (shift ? x->interact_shift : x->interact)(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc,
                                                    x->shiftv);
     if (x->tau) cpu_sps(x, &P);

@@ -377,20 +377,20 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
         vres_sph_split_cuda(n, n, 2, x->dev.pos, x->dev.vel, x->dev.rho, x->x2d, x->v2d, x->inv_rho);
         vres_sph_arrays P = vres_sph_arrays_make(n, 2, x->x2d, x->dev.vel, x->v2d, x->dev.rho, x->dev.press,
                                                  x->inv_rho, x->dev.mass_p, x->dev.type);
+        P.tau = x->tau; /* laminar+SPS: the interaction writes the stress there */
         if (!launched(x, "2D split arrays") ||
             !ok(x, cudaMemcpy(x->dP, &P, sizeof P, cudaMemcpyHostToDevice), "copy the 2D arrays' set"))
             return 0;
         if (c->general)
             vres_sph_general_v_cuda(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace, x->ar, x->visc, x->shiftv,
-                                    c->ddt, vres_run_pick(c, &x->dc).walls, vres_run_pick(c, &x->dc).viscosity,
-                                    c->kernel, shift, 2);
+                                    c->ddt, vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, 2);
         else
             pick_interaction2d(vres_run_pick(c, &x->dc), shift)(x->hc.ncells + 1, x->dcells, x->dP, x->dC, x->ace,
                                                                 x->ar, x->visc, x->shiftv);
     } else if (c->general)
         vres_sph_general_cuda(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p,
                               x->dev.type, x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
-                              vres_run_pick(c, &x->dc).walls, vres_run_pick(c, &x->dc).viscosity, c->kernel, shift);
+                              vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift);
     else if (shift)
         x->interact_shift(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type,
                           x->C, x->ace, x->ar, x->visc, x->shiftv);
@@ -398,14 +398,12 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
         x->interact(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.press, x->dev.mass_p, x->dev.type, x->C,
                     x->ace, x->ar, x->visc);
     if (!launched(x, "interaction")) return 0;
-    if (x->tau) { /* laminar+SPS: tau from the current state, then its divergence (kernels/sps.h) */
+    if (x->tau) { /* laminar+SPS: the stress's divergence (kernels/sps.h) */
         const int cubic = c->kernel == VRES_KERNEL_CUBIC, walls = vres_run_pick(c, &x->dc).walls;
-        if (c->dim == 2) { /* the cell-wise loops, over the 2D arrays the interaction read */
-            (cubic ? vres_sps2d_cubic_tau_cuda : vres_sps2d_tau_cuda)(x->hc.ncells + 1, x->dcells, x->dP, x->dC,
-                                                                      x->tau);
+        if (c->dim == 2) /* the 2D interaction wrote the stress; the cell-wise loop over its arrays */
             (cubic ? vres_sps2d_cubic_force_cuda : vres_sps2d_force_cuda)(x->hc.ncells + 1, x->dcells, x->dP, x->dC,
                                                                           walls, x->tau, x->ace);
-        } else {
+        else { /* the 3D per-particle interaction is the laminar one: the stress first */
             vres_sps_tau_cuda(n, x->dcells, x->dev.pos, x->dev.vel, x->dev.rho, x->dev.mass_p, x->dev.type, x->C,
                               c->kernel, x->tau);
             vres_sps_force_cuda(n, x->dcells, x->dev.pos, x->dev.mass_p, x->dev.type, x->C, walls, c->kernel, x->tau,

@@ -4,14 +4,16 @@
  * conserves momentum pairwise between fluid and a floating body's particles, a linear shear on a
  * lattice gives the lattice's own strain (and so tau) exactly, and over a periodic
  * lattice holding the 2D Taylor-Green vortex the strain the particles sum is the field's and the
- * power of the SPS force is the closure's analytical dissipation; the cell-wise loops the backends
- * run give the per-particle loops' results bit for bit. */
+ * power of the SPS force is the closure's analytical dissipation; the backends' cell-wise path (the
+ * interaction's SPS variants summing the strain, then the force loop) gives the per-particle loops'
+ * results bit for bit. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "../kernels/sph.h"
+#include "../kernels/sph_pick.h"
 #include "../kernels/sps.h"
 #include "cells.h"
 #include "check_run.h"
@@ -253,10 +255,12 @@ START_TEST(taylor_green_strain_and_dissipation)
 }
 END_TEST
 
-/* The cell-wise loops (vres_sps2d_*, vres_sps3d_*: split arrays, candidate passes) give the
- * per-particle loops' tau and accelerations bit for bit (tolerance 0), on a jittered block of
- * fluid with walls below and a floating body's particles in it, random velocities and
- * densities, periodic in x, for both kernels, in 2D and 3D. */
+/* The backends' laminar+SPS path (the interaction's _sps_ variants summing the strain into the
+ * arrays' tau in their own pass, then the cell-wise force loop vres_sps<dim>d_*force) gives the
+ * per-particle loops' tau and stress accelerations bit for bit (tolerance 0), and the SPS
+ * variant's own rates are the laminar variant's bit for bit; on a jittered block of fluid with
+ * walls below, a floating body's particles and a buffer particle in it, random velocities and
+ * densities, periodic in x, both kernels, 2D and 3D. */
 START_TEST(cell_loops_equal_particle_loops)
 {
     for (int dim = 2; dim <= 3; dim++)
@@ -264,6 +268,8 @@ START_TEST(cell_loops_equal_particle_loops)
             const double dp = 0.02, h = sqrt((double)dim) * dp;
             const int kernel = cubic ? VRES_KERNEL_CUBIC : VRES_KERNEL_WENDLAND;
             vres_sph_consts C = vres_sph_consts_make(dim, h, 20);
+            C.kernel = kernel;
+            C.nu = C.nu_wall = 1e-3;
             vres_sps_constants(dim, dp, &C.sps_smag, &C.sps_blin);
             vres_domain d;
             memset(&d, 0, sizeof d);
@@ -276,9 +282,13 @@ START_TEST(cell_loops_equal_particle_loops)
                         double x[3] = {(i + 0.5) * dp + jit * (rand() / (double)RAND_MAX - 0.5),
                                        dim == 3 ? (j + 0.5) * dp + jit * (rand() / (double)RAND_MAX - 0.5) : 0,
                                        (k + 0.5) * dp + jit * (rand() / (double)RAND_MAX - 0.5)};
-                        int t = k < 0 ? VRES_FIXED : (i == 5 && k == 3) || (i == 6 && k == 3) ? VRES_FLOATING : VRES_FLUID;
+                        int t = k < 0                                   ? VRES_FIXED
+                                : (i == 5 || i == 6) && k == 3 && j == 0 ? VRES_FLOATING
+                                : i == 2 && k == 5 && j == 0            ? VRES_BUFFER
+                                                                        : VRES_FLUID;
                         size_t q = vres_domain_push(&d, x, t, 0);
                         d.rho[q] = (float)(1000 + 10.0 * rand() / RAND_MAX);
+                        d.press[q] = (float)(100.0 * rand() / RAND_MAX);
                         d.mass_p[q] = 1000 * pow(dp, dim);
                         for (int c = 0; c < 3; c++)
                             if (t != VRES_FIXED && (c != 1 || dim == 3))
@@ -293,31 +303,46 @@ START_TEST(cell_loops_equal_particle_loops)
             const size_t n = d.n;
             double *tau1 = calloc(6 * n, sizeof *tau1), *tau2 = calloc(6 * n, sizeof *tau2);
             double *ace1 = calloc(3 * n, sizeof *ace1), *ace2 = calloc(3 * n, sizeof *ace2);
+            double *ar1 = calloc(n, sizeof *ar1), *ar2 = calloc(n, sizeof *ar2);
+            double *vi1 = calloc(n, sizeof *vi1), *vi2 = calloc(n, sizeof *vi2), *sps1 = calloc(3 * n, sizeof *sps1);
             double *xs = calloc(3 * n, sizeof *xs), *inv_rho = calloc(n, sizeof *inv_rho);
             float *v2d = calloc(2 * n, sizeof *v2d);
             vres_sph_split_cpu(n, n, dim, d.pos, d.vel, d.rho, xs, v2d, inv_rho);
-            const vres_sph_arrays P = vres_sph_arrays_make(n, dim, xs, d.vel, v2d, d.rho, d.press, inv_rho, d.mass_p,
-                                                           d.type);
+            vres_sph_arrays P = vres_sph_arrays_make(n, dim, xs, d.vel, v2d, d.rho, d.press, inv_rho, d.mass_p, d.type);
+            /* per particle: the stress and its acceleration alone */
             vres_sps_tau_cpu(n, &g, d.pos, d.vel, d.rho, d.mass_p, d.type, C, kernel, tau1);
-            vres_sps_force_cpu(n, &g, d.pos, d.mass_p, d.type, C, VRES_WALLS_FLOATING, kernel, tau1, ace1);
+            vres_sps_force_cpu(n, &g, d.pos, d.mass_p, d.type, C, VRES_WALLS_FLOATING, kernel, tau1, sps1);
+            /* the backends' way: the laminar and the SPS variants, then the cell-wise force */
             const size_t nc = g.ncells + 1;
+            vres_interact_v_fn lam, sps;
+            vres_sps_force_v_fn force;
             if (dim == 2) {
-                (cubic ? vres_sps2d_cubic_tau_cpu : vres_sps2d_tau_cpu)(nc, &g, &P, &C, tau2);
-                (cubic ? vres_sps2d_cubic_force_cpu : vres_sps2d_force_cpu)(nc, &g, &P, &C, VRES_WALLS_FLOATING, tau2,
-                                                                            ace2);
+                lam = cubic ? vres_sph2d_cubic_laminar_flt_cpu : vres_sph2d_laminar_flt_cpu;
+                sps = cubic ? vres_sph2d_cubic_sps_flt_cpu : vres_sph2d_sps_flt_cpu;
+                force = cubic ? vres_sps2d_cubic_force_cpu : vres_sps2d_force_cpu;
             } else {
-                (cubic ? vres_sps3d_cubic_tau_cpu : vres_sps3d_tau_cpu)(nc, &g, &P, &C, tau2);
-                (cubic ? vres_sps3d_cubic_force_cpu : vres_sps3d_force_cpu)(nc, &g, &P, &C, VRES_WALLS_FLOATING, tau2,
-                                                                            ace2);
+                lam = cubic ? vres_sph3d_cubic_laminar_flt_cpu : vres_sph3d_laminar_flt_cpu;
+                sps = cubic ? vres_sph3d_cubic_sps_flt_cpu : vres_sph3d_sps_flt_cpu;
+                force = cubic ? vres_sps3d_cubic_force_cpu : vres_sps3d_force_cpu;
             }
-            double big = 0;
+            lam(nc, &g, &P, &C, ace1, ar1, vi1, NULL);
+            P.tau = tau2;
+            sps(nc, &g, &P, &C, ace2, ar2, vi2, NULL);
             for (size_t i = 0; i < 6 * n; i++) ck_assert_msg(tau1[i] == tau2[i], "dim %d cubic %d tau[%zu]", dim, cubic, i);
+            for (size_t i = 0; i < n; i++) ck_assert(ar1[i] == ar2[i] && vi1[i] == vi2[i]);
+            for (size_t i = 0; i < 3 * n; i++) ck_assert(ace1[i] == ace2[i]);
+            for (size_t i = 0; i < 3 * n; i++) ace1[i] += sps1[i];
+            force(nc, &g, &P, &C, VRES_WALLS_FLOATING, tau2, ace2);
+            double big = 0, tbig = 0;
             for (size_t i = 0; i < 3 * n; i++) {
                 ck_assert_msg(ace1[i] == ace2[i], "dim %d cubic %d ace[%zu]: %g %g", dim, cubic, i, ace1[i], ace2[i]);
-                big = fmax(big, fabs(ace1[i]));
+                big = fmax(big, fabs(sps1[i]));
             }
-            ck_assert(big > 0); /* compared on something */
-            free(tau1), free(tau2), free(ace1), free(ace2), free(xs), free(inv_rho), free(v2d);
+            for (size_t i = 0; i < n; i++)
+                if (d.type[i] == VRES_BUFFER) tbig = fabs(tau1[6 * i]); /* the buffer particle has its stress */
+            ck_assert(big > 0 && tbig > 0); /* compared on something */
+            free(tau1), free(tau2), free(ace1), free(ace2), free(ar1), free(ar2), free(vi1), free(vi2), free(sps1);
+            free(xs), free(inv_rho), free(v2d);
             vres_cells_free(&g);
             vres_domain_free(&d);
         }
