@@ -3,8 +3,8 @@
 # it; the sub-particle stress acts (the dam break with SPS differs from the laminar run with
 # the same Visco, which it would not if the stress were left out); a run restarts from a
 # snapshot bit for bit (tau is computed from the state the snapshot holds, not carried from the
-# previous step as DualSPHysics does); and cases/floating_box2d with SPS restarts bit for bit
-# too, particles and /Bodies (the stress is summed into the body's force).
+# previous step as DualSPHysics does), in 2D and 3D; and cases/floating_box2d with SPS restarts
+# bit for bit too, particles and /Bodies (the stress is summed into the body's force).
 source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
 DB=$CASES/dsph_dambreak2d/dambreak2d_Def.xml
@@ -24,6 +24,18 @@ for k in 3 5; do
         check "snap $k $ds equal to the uninterrupted run's" \
             h5diff -q "$T/a/snap_0000$k.h5" "$T/b/snap_0000$k.h5" /Domains/D0/$ds /Domains/D0/$ds
     done
+done
+
+# 3D (the CPU's 3D cell-wise variants): a coarse 3D dam break restarts bit for bit
+"$BIN/vres-gencase" -q --dp 0.05 --set ViscoTreatment=2 --set Visco=1e-6 "$CASES/bench_dambreak3d/bench_dambreak3d_Def.xml" \
+    -o "$T/db3.h5" || notok "gencase the 3D dam break with SPS"
+expect 0 "3D dam break with SPS to 0.03 s" "$RUN" --threads 2 --tmax 0.03 --tout 0.01 "$T/db3.h5" -o "$T/d3a"
+check "3D: the module list names laminar+SPS" grep -q 'wcsph-3d .*laminar-sps-viscosity' "$ERR"
+cp -r "$T/d3a" "$T/d3b"
+expect 0 "restart the 3D dam break from snap_00001.h5" "$RUN" -q --threads 1 --restart "$T/d3b/snap_00001.h5"
+for ds in Position Velocity Density; do
+    check "3D snap 3 $ds equal to the uninterrupted run's" \
+        h5diff -q "$T/d3a/snap_00003.h5" "$T/d3b/snap_00003.h5" /Domains/D0/$ds /Domains/D0/$ds
 done
 
 # a floating body with SPS: restarts bit for bit, body state included
