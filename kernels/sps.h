@@ -164,7 +164,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sps_force_v(size_t a, const vr
             if (float_a && !vres_type_acts_fluid(P->type[b])) continue; /* a body's walls: no tau either side */
             Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i], Q.m[np] = P->mass[b];
             if (D3) Q.dy[np] = L.dy[i];
-            for (int k = 0; k < 6; k++) Q.tb[k][np] = tau[6 * b + k];
+            Q.tb[0][np] = tau[6 * b], Q.tb[2][np] = tau[6 * b + 2], Q.tb[5][np] = tau[6 * b + 5];
+            if (D3) Q.tb[1][np] = tau[6 * b + 1], Q.tb[3][np] = tau[6 * b + 3], Q.tb[4][np] = tau[6 * b + 4];
             np++;
         }
 #pragma omp simd
