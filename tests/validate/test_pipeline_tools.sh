@@ -44,5 +44,5 @@ check "sweep.mk runs each default case with GNU parallel -j2" \
 expect 0 "validate.mk: dry run" make -n -f "$P/validate.mk" -C "$ROOT" RUNS="$T/runs" REPORTS="$T/rep"
 check "validate.mk runs the dam break at dp 0.02 and 0.01" \
     [ "$(grep -c -E 'cases/dambreak_front2d/check --threads 1 --dp 0\.0[12] ' "$OUT")" -eq 2 ]
-check "validate.mk runs the four stability cases" [ "$(grep -c -E 'cases/stiff_[a-z0-9]+/check --threads 1 +-o' "$OUT")" -eq 4 ]
+check "validate.mk runs the five stiff_<word> stability cases (stiff_sps2d among them)" [ "$(grep -c -E 'cases/stiff_[a-z0-9]+/check --threads 1 +-o' "$OUT")" -eq 5 ]
 check "validate.mk runs the five coupled stability cases" [ "$(grep -c -E 'cases/stiff_vres_[a-z0-9_]+/check --threads 1 +-o' "$OUT")" -eq 5 ]
