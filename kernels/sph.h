@@ -1062,7 +1062,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
 
 /* The stencil of cell `cell` of g into *St (no ranges for cell == g->ncells, the slots outside
  * the grid, which have no neighbours) in dimension dim; returns the slot after the cell's last
- * (its particles are slots g->begin[cell] .. end - 1), and leaves St unset when it has none. */
+ * (its particles are slots g->begin[cell] .. end - 1); St->m is 0 for an empty cell. */
 VRES_HD static inline VRES_FORCE_INLINE size_t vres_sph_stencil_make(size_t cell, const vres_cells *g, int dim,
                                                                      vres_sph_stencil *St)
 {
