@@ -1031,15 +1031,52 @@ static int find_parts(cd_ctx *c, xmlNodePtr root, cd_parts *p)
     return 0;
 }
 
-/* <mkconfig boundcount fluidcount>: the limits of the mk values. */
+/* <mkorientfluid mk orient> / <mkorientbound mk orient>: GenCase's orientation of the particles
+ * of one mk in its own output files. It moves, types and weighs no particle, so vres checks it
+ * (an mk within mkconfig's counts, orient three letters naming x, y and z once each, in either
+ * case: GenCase's template writes "Xyz", "YxZ", "zyx") and keeps nothing of it. */
+static void read_mkorient(cd_ctx *c, xmlNodePtr e)
+{
+    static const char *const a[] = {"mk", "orient", NULL};
+    cd_check_attrs(c, e, a);
+    cd_check_children(c, e, NULL);
+    int fluid = !strcmp(cd_name(e), "mkorientfluid"), mk = 0;
+    int r = cd_int(c, e, "mk", 0, &mk);
+    int limit = fluid ? c->fluidcount : c->boundcount;
+    if (r == 1) cd_err(c, e, "<%s> needs the attribute 'mk'", cd_name(e));
+    else if (r == 0 && mk < 0) cd_err(c, e, "<%s mk=\"%d\">: mk must not be negative", cd_name(e), mk);
+    else if (r == 0 && limit > 0 && mk >= limit)
+        cd_err(c, e, "<%s mk=\"%d\">: mk is not below <mkconfig %s=\"%d\">", cd_name(e), mk,
+               fluid ? "fluidcount" : "boundcount", limit);
+    char *o = cd_attr(e, "orient");
+    int seen[3] = {0, 0, 0}, ok = o && strlen(o) == 3;
+    for (int i = 0; ok && i < 3; i++) {
+        int k = tolower((unsigned char)o[i]) - 'x';
+        ok = k >= 0 && k < 3 && !seen[k];
+        if (ok) seen[k] = 1;
+    }
+    if (!o) cd_err(c, e, "<%s> needs the attribute 'orient'", cd_name(e));
+    else if (!ok)
+        cd_err(c, e, "<%s orient=\"%s\">: orient names the axes x, y and z once each (e.g. \"Xyz\")", cd_name(e), o);
+    else cd_debug(c, e, "<%s mk=\"%d\" orient=\"%s\"> accepted: it orients GenCase's particle output only", cd_name(e),
+                  mk, o);
+    free(o);
+}
+
+/* <mkconfig boundcount fluidcount>: the limits of the mk values; <mkorientfluid> and
+ * <mkorientbound> (output only) checked. */
 static void read_mkconfig(cd_ctx *c, xmlNodePtr mkconfig)
 {
     if (!mkconfig) return;
     static const char *const a[] = {"boundcount", "fluidcount", NULL};
+    static const char *const kids[] = {"mkorientfluid", "mkorientbound", NULL};
     cd_check_attrs(c, mkconfig, a);
-    cd_check_children(c, mkconfig, NULL);
+    cd_check_children(c, mkconfig, kids);
     cd_int(c, mkconfig, "boundcount", 0, &c->boundcount);
     cd_int(c, mkconfig, "fluidcount", 0, &c->fluidcount);
+    for (xmlNodePtr e = mkconfig->children; e; e = e->next)
+        if (cd_is_elem(e) && (!strcmp(cd_name(e), kids[0]) || !strcmp(cd_name(e), kids[1])))
+            read_mkorient(c, e);
 }
 
 /* Take the root's resolved constants (vres_case_opts.root): the equation of state's hswl,

@@ -604,6 +604,35 @@ START_TEST(skips_and_refusals)
 }
 END_TEST
 
+/* <mkconfig>'s <mkorientfluid> and <mkorientbound> only orient GenCase's output: accepted,
+ * nothing drawn changes; a bad mk or orient is named at its line. */
+START_TEST(mkorient)
+{
+    vres_store *a = rd(mkcase("", DEF2D, WATER TANK, "", ""));
+    vres_store *b = rd(mkcase("", DEF2D, WATER TANK,
+                              "<mkconfig boundcount=\"2\" fluidcount=\"1\"><mkorientfluid mk=\"0\" orient=\"Xyz\"/>"
+                              "<mkorientbound mk=\"1\" orient=\"YxZ\"/><mkorientfluid mk=\"0\" orient=\"zyx\"/></mkconfig>",
+                              ""));
+    ck_assert_ptr_nonnull(a);
+    ck_assert_ptr_nonnull(b);
+    ck_assert_uint_eq(b->dom[0].n, a->dom[0].n);
+    for (size_t i = 0; i < a->dom[0].n; i++) {
+        ck_assert_int_eq(b->dom[0].type[i], a->dom[0].type[i]);
+        ck_assert(memcmp(&b->dom[0].pos[3 * i], &a->dom[0].pos[3 * i], 3 * sizeof(double)) == 0);
+    }
+    vres_store_free(a);
+    vres_store_free(b);
+    REFUSED(mkcase("", DEF2D, WATER, "<mkconfig fluidcount=\"1\">\n<mkorientfluid mk=\"1\" orient=\"xyz\"/></mkconfig>", ""),
+            "t.xml:3: <mkorientfluid mk=\"1\">: mk is not below <mkconfig fluidcount=\"1\">", NULL);
+    REFUSED(mkcase("", DEF2D, WATER, "<mkconfig>\n<mkorientbound mk=\"0\" orient=\"xxz\"/></mkconfig>", ""),
+            "t.xml:3: <mkorientbound orient=\"xxz\">: orient names the axes x, y and z once each", NULL);
+    REFUSED(mkcase("", DEF2D, WATER, "<mkconfig>\n<mkorientbound orient=\"xyz\"/></mkconfig>", ""),
+            "t.xml:3: <mkorientbound> needs the attribute 'mk'", NULL);
+    REFUSED(mkcase("", DEF2D, WATER, "<mkconfig>\n<mkorientbox mk=\"0\"/></mkconfig>", ""),
+            "t.xml:3: element <mkorientbox> is not supported in <mkconfig>", NULL);
+}
+END_TEST
+
 /* Gauges and inlet/outlet zones are kept as XML text, their #expressions evaluated. */
 /* <boxfill>all^top</boxfill> draws what "bottom | left | right | front | back" draws; shapes after
  * <setactive drawpoints="0"> paint nothing until <resetdraw>. */
@@ -745,6 +774,7 @@ static Suite *suite(void)
     tcase_add_test(t, check_domain);
     tcase_add_test(t, bodies);
     tcase_add_test(t, skips_and_refusals);
+    tcase_add_test(t, mkorient);
     tcase_add_test(t, special_kept);
     tcase_add_test(t, boxfill_except_and_setactive);
     tcase_add_test(t, redraw_clipped);
