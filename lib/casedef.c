@@ -121,7 +121,9 @@ int cd_check_attrs(cd_ctx *c, xmlNodePtr node, const char *const *allowed)
     int bad = 0;
     for (xmlAttrPtr a = node->properties; a; a = a->next) {
         const char *an = (const char *)a->name;
-        if (an[0] == '_' || !strcmp(an, "comment") || !strcmp(an, "units_comment") || in_list(an, allowed))
+        /* cmt: GenCase's comment on a command (<drawbox cmt="Piston">), like comment */
+        if (an[0] == '_' || !strcmp(an, "comment") || !strcmp(an, "units_comment") || !strcmp(an, "cmt") ||
+            in_list(an, allowed))
             continue;
         cd_err(c, node, "attribute '%s' of <%s> is not supported", an, cd_name(node));
         bad++;

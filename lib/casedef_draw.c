@@ -15,10 +15,10 @@
  * Variables
  * ---------------------------------------------------------------------------------------- */
 
-/* 1 for attributes that carry no variable (_rem, _print, comment...). */
+/* 1 for attributes that carry no variable (_rem, _print, comment, cmt...). */
 static int not_a_var(const char *name)
 {
-    return name[0] == '_' || !strcmp(name, "comment") || !strcmp(name, "units_comment");
+    return name[0] == '_' || !strcmp(name, "comment") || !strcmp(name, "units_comment") || !strcmp(name, "cmt");
 }
 
 /* newvar / newvarcte / setvar: each attribute NAME="EXPRESSION" sets a numeric variable. A --set

@@ -143,8 +143,8 @@ const char *cd_name(xmlNodePtr node);
 xmlNodePtr cd_child(xmlNodePtr node, const char *name);
 /* Number of child elements called name. */
 int cd_count(xmlNodePtr node, const char *name);
-/* Report attributes of node not in allowed (NULL-terminated); comment, units_comment and names
- * starting with '_' are always allowed. Returns how many were unknown. */
+/* Report attributes of node not in allowed (NULL-terminated); comment, units_comment, cmt and
+ * names starting with '_' are always allowed. Returns how many were unknown. */
 int cd_check_attrs(cd_ctx *c, xmlNodePtr node, const char *const *allowed);
 /* Report child elements of node not in allowed (NULL-terminated). Returns how many. */
 int cd_check_children(cd_ctx *c, xmlNodePtr node, const char *const *allowed);

@@ -49,11 +49,13 @@ static void set_active(cd_ctx *c, xmlNodePtr node)
 }
 
 /* One <setshapemode> word: kinds of shapes kept (all, bound, fluid, void, null) or the kind
- * of file written (actual, dp: accepted, vres keeps the shapes themselves). */
+ * of file written (actual or its synonym real: the shapes at their own size, as DualSPHysics'
+ * CaseFloating writes "dp | real | bound"; dp: adjusted to the lattice): accepted, vres keeps
+ * the shapes themselves. */
 static int shapemode_word(const char *w, void *arg)
 {
     unsigned *kinds = arg;
-    if (!strcasecmp(w, "actual") || !strcasecmp(w, "dp")) return 0;
+    if (!strcasecmp(w, "actual") || !strcasecmp(w, "real") || !strcasecmp(w, "dp")) return 0;
     if (!strcasecmp(w, "all")) *kinds |= 7u;
     else if (!strcasecmp(w, "bound")) *kinds |= 1u << VRES_PAINT_BOUND;
     else if (!strcasecmp(w, "fluid")) *kinds |= 1u << VRES_PAINT_FLUID;
@@ -72,7 +74,7 @@ static void set_shapemode(cd_ctx *c, xmlNodePtr node)
     int bad = 0, nword = 0;
     for (char *w = strtok_r(t, "| ,\t\r\n", &save); w; w = strtok_r(NULL, "| ,\t\r\n", &save), nword++)
         if (shapemode_word(w, &kinds) != 0) {
-            cd_err(c, node, "<setshapemode>: unknown word '%s' (actual, dp, all, bound, fluid, void or null)", w);
+            cd_err(c, node, "<setshapemode>: unknown word '%s' (actual, real, dp, all, bound, fluid, void or null)", w);
             bad = 1;
         }
     if (!bad && !nword) cd_err(c, node, "<setshapemode> is empty");

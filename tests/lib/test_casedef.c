@@ -633,6 +633,30 @@ START_TEST(mkorient)
 }
 END_TEST
 
+/* Words and attributes that only concern GenCase's output or its reader: <setshapemode>'s
+ * "real" (DualSPHysics' CaseFloating: "dp | real | bound") and a cmt comment on any command
+ * (<drawbox cmt="Piston">, <newvar cmt> defines no variable) draw what the case draws without
+ * them. */
+START_TEST(output_only_words)
+{
+    const char *tank_cmt = "<setmkbound mk=\"0\" cmt=\"walls\"/><drawbox cmt=\"Tank\"><boxfill>bottom | left | right</boxfill>"
+                           "<point x=\"-0.1\" y=\"-1\" z=\"-0.1\"/><size x=\"1.2\" y=\"2\" z=\"1.1\"/></drawbox>";
+    char cmds[2048];
+    snprintf(cmds, sizeof cmds, "<newvar cmt=\"no variable\" a=\"1\"/><setshapemode>dp | real | bound</setshapemode>%s%s",
+             WATER, tank_cmt);
+    vres_store *a = rd(mkcase("", DEF2D, WATER TANK, "", "")), *b = rd(mkcase("", DEF2D, cmds, "", ""));
+    ck_assert_ptr_nonnull(a);
+    ck_assert_ptr_nonnull(b);
+    ck_assert_uint_eq(b->dom[0].n, a->dom[0].n);
+    ck_assert_uint_eq(vres_domain_count(&b->dom[0], VRES_FIXED), vres_domain_count(&a->dom[0], VRES_FIXED));
+    vres_store_free(a);
+    vres_store_free(b);
+    REFUSED(mkcase("", DEF2D, "\n<setshapemode>dp | unreal</setshapemode>" WATER, "", ""),
+            "t.xml:3: <setshapemode>: unknown word 'unreal' (actual, real, dp,", NULL);
+    REFUSED(mkcase("", DEF2D, WATER "\n<drawbox kmt=\"x\"/>", "", ""), "t.xml:3: attribute 'kmt' of <drawbox> is not supported", NULL);
+}
+END_TEST
+
 /* Gauges and inlet/outlet zones are kept as XML text, their #expressions evaluated. */
 /* <boxfill>all^top</boxfill> draws what "bottom | left | right | front | back" draws; shapes after
  * <setactive drawpoints="0"> paint nothing until <resetdraw>. */
@@ -775,6 +799,7 @@ static Suite *suite(void)
     tcase_add_test(t, bodies);
     tcase_add_test(t, skips_and_refusals);
     tcase_add_test(t, mkorient);
+    tcase_add_test(t, output_only_words);
     tcase_add_test(t, special_kept);
     tcase_add_test(t, boxfill_except_and_setactive);
     tcase_add_test(t, redraw_clipped);
