@@ -458,9 +458,14 @@ static void read_const(cd_ctx *c, xmlNodePtr e, int slot)
         cd_int(c, e, "fluid", 1, &f);
         k->v[slot][0] = b;
         k->v[slot][1] = f;
-        if (b != 1 || f != 1)
-            cd_err(c, e, "<lattice bound=\"%d\" fluid=\"%d\">: only lattice 1 (particles on a cubic lattice) "
-                         "is supported", b, f);
+        /* DualSPHysics: 1 a cubic lattice, 2 body-centred cubic (a particle at each cell's centre too) */
+        if (b != 1 && b != 2)
+            cd_err(c, e, "<lattice bound=\"%d\">: the walls' lattice is 1 (cubic) or 2 (body-centred cubic)", b);
+        if (f == 2)
+            cd_err(c, e, "<lattice fluid=\"2\">: a body-centred fluid is not supported, only body-centred walls "
+                         "(bound=\"2\"); the fluid's lattice is 1 (cubic)");
+        else if (f != 1)
+            cd_err(c, e, "<lattice fluid=\"%d\">: the fluid's lattice is 1 (cubic)", f);
         return;
     }
     case CK_GRAVITY:
@@ -663,6 +668,7 @@ static int resolve_constants(cd_ctx *c, xmlNodePtr at, vres_store *s, int have_f
     vres_params_set(P, "pointref", 3, c->ref, "m", c->ref_given ? "xml" : "default");
     vres_params_set(P, "pointmin", 3, c->pmin, "m", "xml");
     vres_params_set(P, "pointmax", 3, c->pmax, "m", "xml");
+    vres_params_set(P, "lattice", 2, k->v[CK_LATTICE], "", k->origin[CK_LATTICE]);
     vres_params_set(P, "gravity", 3, g, "m/s^2", k->origin[CK_GRAVITY]);
     vres_params_set1(P, "rhop0", rhop0, "kg/m^3", k->origin[CK_RHOP0]);
     vres_params_set1(P, "rhopgradient", k->v[CK_RHOPGRADIENT][0], "", k->origin[CK_RHOPGRADIENT]);
@@ -823,6 +829,8 @@ static void drop_holes(const cd_ctx *c, vres_domain *d)
     size_t m = 0;
     for (size_t i = 0; i < d->n; i++) {
         int in = d->pos[3 * i + 2] > k->hi[2] + 1e-9 * c->dp;
+        for (int a = 0; c->centre && a < 3 && !in; a++) /* lattice 2 drew a dp around the window */
+            in = (a != 1 || c->dim == 3) && (d->pos[3 * i + a] < k->lo[a] - 1e-6 * c->dp || d->pos[3 * i + a] > k->hi[a] + 1e-6 * c->dp);
         for (int h = 0; h < k->nholes && !in; h++) in = inside_box(c->dim, &d->pos[3 * i], k->hole_lo[h], k->hole_hi[h]);
         if (in) continue;
         if (m != i) {
@@ -838,12 +846,72 @@ static void drop_holes(const cd_ctx *c, vres_domain *d)
     for (size_t i = 0; i < m; i++) d->id[i] = i;
 }
 
+/* A lattice node's integer coordinates and what it holds (centre_walls' look-up). */
+typedef struct nodekey {
+    long long i[3]; /* (x - ref) / dp per axis (y 0 in 2D) */
+    int type;       /* VRES_FLUID or VRES_FIXED */
+} nodekey;
+
+/* qsort/bsearch order of nodekey: by coordinates. */
+static int nodekey_cmp(const void *a, const void *b)
+{
+    const nodekey *p = a, *q = b;
+    for (int k = 0; k < 3; k++)
+        if (p->i[k] != q->i[k]) return p->i[k] < q->i[k] ? -1 : 1;
+    return 0;
+}
+
+/* Lattice 2 (body-centred cubic walls): append to tmp, which holds the lattice's particles, the
+ * wall nodes of the centre lattice whose cell has a wall corner and no fluid corner (2^dim
+ * corners: the lattice's nodes around it). The walls were drawn on both lattices; the rule drops
+ * centre points that a later fluid drawing or fill left amid the fluid, or that no wall of the
+ * lattice holds (the far side of a sheet the fluid wets on both sides). Returns the number added. */
+static size_t centre_walls(cd_ctx *c, vres_domain *tmp)
+{
+    vres_domain cen;
+    memset(&cen, 0, sizeof cen);
+    vres_canvas_emit(c->centre, &cen);
+    size_t n0 = tmp->n, added = 0;
+    nodekey *key = vres_xmalloc(sizeof *key * (n0 ? n0 : 1));
+    for (size_t i = 0; i < n0; i++) {
+        for (int a = 0; a < 3; a++)
+            key[i].i[a] = a == 1 && c->dim == 2 ? 0 : llround((tmp->pos[3 * i + a] - c->ref[a]) / c->dp);
+        key[i].type = tmp->type[i];
+    }
+    qsort(key, n0, sizeof *key, nodekey_cmp);
+    for (size_t j = 0; j < cen.n; j++) {
+        if (cen.type[j] == VRES_FLUID) continue; /* never painted: fluid reaches the centres as void */
+        long long lo[3];
+        for (int a = 0; a < 3; a++)
+            lo[a] = a == 1 && c->dim == 2 ? 0 : llround((cen.pos[3 * j + a] - c->ref[a]) / c->dp - 0.5);
+        int walls = 0, fluid = 0;
+        for (int q = 0; q < 8; q++) {
+            if (c->dim == 2 && (q & 2)) continue;
+            nodekey k = {{lo[0] + (q & 1), lo[1] + (q >> 1 & 1), lo[2] + (q >> 2 & 1)}, 0};
+            const nodekey *f = bsearch(&k, key, n0, sizeof *key, nodekey_cmp);
+            if (f) walls += f->type != VRES_FLUID, fluid += f->type == VRES_FLUID;
+        }
+        if (!walls || fluid) continue;
+        size_t at = vres_domain_push(tmp, &cen.pos[3 * j], VRES_FIXED, cen.mk[j]);
+        if (tmp->normal && cen.normal)
+            for (int a = 0; a < 3; a++) tmp->normal[3 * at + a] = cen.normal[3 * j + a];
+        added++;
+    }
+    free(key);
+    vres_domain_free(&cen);
+    return added;
+}
+
 /* Build the root domain from the painted canvas: particles, masses, density, pressure. */
 static int make_root(cd_ctx *c, xmlNodePtr geom, vres_store *s, double bbmin[3], double bbmax[3])
 {
     vres_domain tmp;
     memset(&tmp, 0, sizeof tmp);
     vres_canvas_emit(c->canvas, &tmp);
+    if (c->centre) {
+        size_t nc = centre_walls(c, &tmp);
+        cd_debug(c, geom, "lattice 2: %zu wall particles at the cells' centres", nc);
+    }
     if (tmp.n == 0 && !c->root) { /* a redrawn sub-domain may hold nothing (a box in the air) */
         cd_err(c, geom, "the geometry is empty: no particles were drawn inside pointmin..pointmax");
         vres_domain_free(&tmp);
@@ -1114,8 +1182,9 @@ static void keep_root_consts(cd_ctx *c)
     }
 }
 
-/* The clipped canvas of a redrawn sub-domain, with the root's lattice as its coarse companion. */
-static vres_canvas *new_clipped(cd_ctx *c)
+/* The clipped canvas of a redrawn sub-domain, with the root's lattice as its coarse companion;
+ * centre: the lattice of the cell centres of both (lattice 2's walls). */
+static vres_canvas *new_clipped(cd_ctx *c, int centre)
 {
     const vres_params *P = &c->root->params;
     double ref0[3], min0[3], max0[3];
@@ -1132,8 +1201,28 @@ static vres_canvas *new_clipped(cd_ctx *c)
     /* mode 2 needs each water column's top: draw the column above the window too */
     double hi[3] = {c->clip->hi[0], c->clip->hi[1], c->clip->hi[2]};
     if ((int)c->k.v[CK_RHOPGRADIENT][0] == 2 && c->k.v[CK_GRAVITY][2] < 0 && c->pmax[2] > hi[2]) hi[2] = c->pmax[2];
-    return vres_canvas_new_clipped(c->dim, c->dp, c->ref, c->pmin, c->pmax, c->clip->lo, hi,
-                                   vres_params_get(P, "dp", c->dp), ref0, min0, max0);
+    double dp0 = vres_params_get(P, "dp", c->dp), ref[3], lo[3];
+    for (int a = 0; a < 3; a++) {
+        int shift = centre && (a != 1 || c->dim == 3);
+        ref[a] = c->ref[a] + (shift ? c->dp / 2 : 0);
+        ref0[a] += shift ? dp0 / 2 : 0;
+        /* lattice 2: a dp more on each side, so that centre_walls sees every corner of the
+         * window's cells; drop_holes drops what lies outside the window */
+        double grow = (int)c->k.v[CK_LATTICE][0] == 2 ? c->dp : 0;
+        lo[a] = c->clip->lo[a] - (a != 1 || c->dim == 3 ? grow : 0);
+        hi[a] += a != 1 || c->dim == 3 ? grow : 0;
+    }
+    return vres_canvas_new_clipped(c->dim, c->dp, ref, c->pmin, c->pmax, lo, hi, dp0, ref0, min0, max0);
+}
+
+/* The canvas of the case's lattice (centre: of its cell centres, lattice 2's walls), clipped
+ * to the window of a redrawn sub-domain. NULL after the canvas said why. */
+static vres_canvas *new_canvas(cd_ctx *c, int centre)
+{
+    if (c->clip) return new_clipped(c, centre);
+    double ref[3];
+    for (int a = 0; a < 3; a++) ref[a] = c->ref[a] + (centre && (a != 1 || c->dim == 3) ? c->dp / 2 : 0);
+    return vres_canvas_new(c->dim, c->dp, ref, c->pmin, c->pmax);
 }
 
 /* Variables, definition and constants, then the commands painted on the lattice (only the
@@ -1148,8 +1237,9 @@ static void read_geometry(cd_ctx *c, cd_parts *p)
     if (c->root && c->have_def) keep_root_consts(c);
     predefine_consts(c);
     if (c->have_def) {
-        c->canvas = c->clip ? new_clipped(c) : vres_canvas_new(c->dim, c->dp, c->ref, c->pmin, c->pmax);
+        c->canvas = new_canvas(c, 0);
         if (!c->canvas) c->nerr++; /* the canvas said why */
+        else if ((int)c->k.v[CK_LATTICE][0] == 2 && !(c->centre = new_canvas(c, 1))) c->nerr++;
     }
     cd_scan_bodies(c, p->floatings, p->motion);
     vres_paint_init(&c->paint);
@@ -1231,6 +1321,7 @@ vres_store *vres_case_read(const char *xml, size_t len, const char *src, const c
 done:
     if (doc) xmlFreeDoc(doc);
     vres_canvas_free(c->canvas);
+    vres_canvas_free(c->centre);
     vres_vars_free(c->vars);
     for (int i = 0; i < c->nov; i++) free(c->ov[i].name), free(c->ov[i].value);
     free(c->ov);

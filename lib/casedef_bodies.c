@@ -163,7 +163,9 @@ static void read_floating(cd_ctx *c, xmlNodePtr e, vres_store *s)
         else has_part = cd_child_num(c, e, "masspart", "value", 0, &masspart) == 0;
         free(v);
     }
-    double vol = pow(d->dp, s->dim);
+    /* volume per particle: dp^dim, half that on lattice 2 (body-centred cubic walls hold two
+     * particles per cell), so that rhopbody times the body's volume is its mass on either */
+    double vol = pow(d->dp, s->dim) / ((int)c->k.v[CK_LATTICE][0] == 2 ? 2 : 1);
     if (has_mass) {
         if (!(massbody > 0)) cd_err(c, e, "massbody must be greater than zero (%g)", massbody);
         if (!has_part) masspart = massbody / (double)n;

@@ -523,6 +523,17 @@ static void fill(cd_ctx *c, xmlNodePtr node, int boxed)
         cd_note(c, node, "<%s> after <setmkvoid> paints void nodes", cd_name(node));
     size_t n = vres_canvas_fill(c->canvas, &c->paint, seed, boxed ? p : NULL, boxed ? bmax : NULL,
                                 (unsigned)mode);
+    if (c->centre && c->paint.what == VRES_PAINT_BOUND) {
+        /* lattice 2: a wall fill fills the centre lattice too, from its node nearest the seed,
+         * where the fluid is void (only walls are drawn there); silently: the lattice's fill
+         * already said what went wrong, and a centre node next to a seed may be a wall */
+        unsigned cm = (unsigned)mode & ~(unsigned)VRES_FILL_FLUID;
+        if (mode & VRES_FILL_FLUID) cm |= VRES_FILL_VOID;
+        int v = vres_verbosity;
+        vres_verbosity = -1;
+        vres_canvas_fill(c->centre, &c->paint, seed, boxed ? p : NULL, boxed ? bmax : NULL, cm);
+        vres_verbosity = v;
+    }
     if (n == 0) cd_note(c, node, "<%s> filled nothing: the seed point (%g, %g, %g) is not a fillable node",
                         cd_name(node), seed[0], seed[1], seed[2]);
     else cd_debug(c, node, "<%s> filled %zu nodes", cd_name(node), n);
@@ -617,7 +628,7 @@ void cd_run_commands(cd_ctx *c, xmlNodePtr list)
             continue;
         }
         /* The canvas refuses bad geometry with its own message (naming the command); add where. */
-        if (c->canvas && !c->canvas_failed && vres_canvas_failed(c->canvas)) {
+        if (c->canvas && !c->canvas_failed && (vres_canvas_failed(c->canvas) || (c->centre && vres_canvas_failed(c->centre)))) {
             c->canvas_failed = 1;
             cd_err(c, node, "<%s> cannot be drawn (see the message above)", n);
         }

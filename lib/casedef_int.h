@@ -50,7 +50,7 @@ typedef struct cd_override {
 
 /* The constants of <constantsdef>, by slot (cd_const_names gives each slot's element name). */
 enum {
-    CK_LATTICE = 0,   /* lattice kind: v[0] bound, v[1] fluid (only 1, the cubic lattice) */
+    CK_LATTICE = 0,   /* lattice kind: v[0] bound (1 cubic, 2 body-centred cubic), v[1] fluid (1 only) */
     CK_GRAVITY,       /* gravity (m/s^2), three components */
     CK_RHOP0,         /* reference density (kg/m^3) */
     CK_RHOPGRADIENT,  /* initial density: 1 rhop0, 2 water column, 3 maximum water height */
@@ -100,6 +100,9 @@ typedef struct cd_ctx {
     cd_consts k;
     /* drawing */
     vres_canvas *canvas;   /* lattice being painted, NULL when the definition failed */
+    vres_canvas *centre;   /* <lattice bound="2">: the lattice of the cell centres (shifted by dp/2 on
+                              each axis of the case), on which the walls are drawn too; NULL for
+                              lattice 1 (make_root keeps its walls by the rule of centre_walls) */
     vres_paint paint;      /* current GenCase drawing state */
     double mstack[CD_MAX_MATRICES][16]; /* matrixsave stack */
     int nmstack;           /* matrices on the stack */

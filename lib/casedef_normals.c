@@ -16,14 +16,35 @@
 
 #include "log.h"
 
-size_t cd_shape_draw(cd_ctx *c, const cd_shape *sh, const vres_paint *paint)
+/* Paint shape sh with paint on canvas cv. Returns the nodes painted. */
+static size_t draw_on(vres_canvas *cv, const cd_shape *sh, const vres_paint *paint)
 {
     switch (sh->kind) {
-    case CD_SH_BOX: return vres_canvas_box(c->canvas, paint, sh->p, sh->q, sh->mask);
-    case CD_SH_CYLINDER: return vres_canvas_cylinder(c->canvas, paint, sh->p, sh->q, sh->radius, sh->mask);
-    case CD_SH_POLYGON: return vres_canvas_polygon(c->canvas, paint, sh->np, (const double (*)[3])sh->pts);
-    default: return vres_canvas_extrude(c->canvas, paint, sh->np, (const double (*)[3])sh->pts, sh->q, sh->closed);
+    case CD_SH_BOX: return vres_canvas_box(cv, paint, sh->p, sh->q, sh->mask);
+    case CD_SH_CYLINDER: return vres_canvas_cylinder(cv, paint, sh->p, sh->q, sh->radius, sh->mask);
+    case CD_SH_POLYGON: return vres_canvas_polygon(cv, paint, sh->np, (const double (*)[3])sh->pts);
+    default: return vres_canvas_extrude(cv, paint, sh->np, (const double (*)[3])sh->pts, sh->q, sh->closed);
     }
+}
+
+/* Lattice 2: the shape is drawn on the centre lattice too, where only walls are kept: fluid
+ * paints void there (it erases the walls it covers and adds no point). A solid drawn full is
+ * drawn solid there, its interior only: the surface band of the centre lattice lies half a dp
+ * outside the lattice's outermost nodes (a half-dp tie goes to the outer node), which would make
+ * a body or piston a dp wider; sheets (faces, face mode) keep that outer layer, behind a tank's
+ * wall. A normals surface measures the centre lattice's walls as it measures the lattice's. */
+size_t cd_shape_draw(cd_ctx *c, const cd_shape *sh, const vres_paint *paint)
+{
+    size_t n = draw_on(c->canvas, sh, paint);
+    if (c->centre) {
+        vres_paint q = *paint;
+        if (!q.surface) {
+            if (q.what != VRES_PAINT_BOUND) q.what = VRES_PAINT_VOID, q.mk = 0;
+            if (q.drawmode == VRES_DRAW_FULL) q.drawmode = VRES_DRAW_SOLID;
+        }
+        n += draw_on(c->centre, sh, &q);
+    }
+    return n;
 }
 
 void cd_free_shapes(cd_ctx *c)
@@ -236,14 +257,16 @@ void cd_read_normals(cd_ctx *c, xmlNodePtr normals)
     int k = find_set(c, gf);
     if (k < 0 || c->nerr || !c->canvas) return;
     double h = cd_h(c);
-    if (vres_canvas_surface_begin(c->canvas, dh * h) != 0) {
+    if (vres_canvas_surface_begin(c->canvas, dh * h) != 0 || (c->centre && vres_canvas_surface_begin(c->centre, dh * h) != 0)) {
         c->nerr++;
         return;
     }
     int nsh = measure_set(c, k);
-    size_t nwall = vres_canvas_count(c->canvas, VRES_PAINT_BOUND);
+    /* lattice 2: the centre lattice's counts include the centre points make_root drops later */
+    size_t nwall = vres_canvas_count(c->canvas, VRES_PAINT_BOUND) + vres_canvas_count(c->centre, VRES_PAINT_BOUND);
     size_t got = vres_canvas_surface_end(c->canvas, msh * h);
-    if (vres_canvas_failed(c->canvas)) {
+    if (c->centre) got += vres_canvas_surface_end(c->centre, msh * h);
+    if (vres_canvas_failed(c->canvas) || (c->centre && vres_canvas_failed(c->centre))) {
         cd_err(c, gf, "the normals geometry cannot be measured (see the message above)");
         return;
     }

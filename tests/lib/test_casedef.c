@@ -204,8 +204,10 @@ START_TEST(constants_errors)
     REFUSED(mkcase("\n<rhop0 value=\"0\"/>", DEF2D, WATER, "", ""), "t.xml:3: rhop0 must be greater than zero (rhop0=0)", NULL);
     REFUSED(mkcase("\n<gamma value=\"-7\"/>", DEF2D, WATER, "", ""), "t.xml:3: gamma must be greater than zero (gamma=-7)", NULL);
     REFUSED(mkcase("<coefh value=\"1\"/>\n<hdp value=\"2\"/>", DEF2D, WATER, "", ""), "t.xml:3: only one of <coefh> and <hdp> may be given", NULL);
-    REFUSED(mkcase("\n<lattice bound=\"2\" fluid=\"1\"/>", DEF2D, WATER, "", ""),
-            "t.xml:3: <lattice bound=\"2\" fluid=\"1\">: only lattice 1 (particles on a cubic lattice) is supported", NULL);
+    REFUSED(mkcase("\n<lattice bound=\"1\" fluid=\"2\"/>", DEF2D, WATER, "", ""),
+            "t.xml:3: <lattice fluid=\"2\">: a body-centred fluid is not supported", NULL);
+    REFUSED(mkcase("\n<lattice bound=\"3\" fluid=\"1\"/>", DEF2D, WATER, "", ""),
+            "t.xml:3: <lattice bound=\"3\">: the walls' lattice is 1 (cubic) or 2 (body-centred cubic)", NULL);
     REFUSED(mkcase("\n<rhopgradient value=\"4\"/>", DEF2D, WATER, "", ""), "t.xml:3: rhopgradient must be 1 (rhop0), 2 (water column) or 3 (maximum water height), not 4", NULL);
     REFUSED(mkcase("\n<gravity x=\"0\" y=\"0\" z=\"0\"/>", DEF2D, WATER, "", ""),
             "t.xml:3: the speed of sound is zero (gravity 0 m/s^2, hswl 0.5 m)", NULL);
@@ -657,6 +659,69 @@ START_TEST(output_only_words)
 }
 END_TEST
 
+/* <lattice bound="2">: body-centred cubic walls, counted by hand on the 2D tank (sheets: 35 nodes
+ * of the lattice, 38 centres half a dp outside them) and a 0.2 m body (9 + 4 centres inside it);
+ * walls weigh rho0 dp^2 each as in DualSPHysics; rhopbody's particles dp^2/2 each; the centre
+ * points' mDBC normals reach the interface the lattice's walls reach. */
+static long find_at(const vres_domain *d, const double *x, int t);
+
+START_TEST(lattice_bcc)
+{
+    const char *body = "<setmkbound mk=\"1\"/><drawbox><boxfill>solid</boxfill><point x=\"1.4\" y=\"0\" z=\"0.1\"/>"
+                       "<size x=\"0.2\" y=\"0\" z=\"0.2\"/></drawbox>";
+    const char *bcc = "<lattice bound=\"2\" fluid=\"1\"/>";
+    char cmds[4096];
+    snprintf(cmds, sizeof cmds, "%s%s%s", WATER, TANK, body);
+    const char *fl = "<floatings><floating mkbound=\"1\" rhopbody=\"500\"/></floatings>";
+    vres_store *s = rd(mkcase(bcc, DEF2D, cmds, fl, ""));
+    ck_assert_ptr_nonnull(s);
+    const vres_domain *d = &s->dom[0];
+    ck_assert_uint_eq(vres_domain_count(d, VRES_FLUID), 66);
+    ck_assert_uint_eq(vres_domain_count(d, VRES_FIXED), 35 + 38);
+    ck_assert_uint_eq(vres_domain_count(d, VRES_FLOATING), 9 + 4);
+    const vres_param *lat = vres_params_find(&s->params, "lattice");
+    ck_assert_ptr_nonnull(lat);
+    NEAR(lat->v[0], 2, 0);
+    NEAR(lat->v[1], 1, 0);
+    double outer[3] = {-0.15, 0, -0.15}, below[3] = {0.45, 0, -0.15}, above[3] = {0.45, 0, -0.05};
+    double in_body[3] = {1.45, 0, 0.15}, off_body[3] = {1.35, 0, 0.15};
+    ck_assert_int_ge(find_at(d, outer, VRES_FIXED), 0);
+    ck_assert_int_ge(find_at(d, below, VRES_FIXED), 0);
+    ck_assert_int_lt(find_at(d, above, VRES_FIXED), 0); /* a sheet's centres lie on its outer side */
+    ck_assert_int_ge(find_at(d, in_body, VRES_FLOATING), 0);
+    ck_assert_int_lt(find_at(d, off_body, VRES_FLOATING), 0); /* a solid's inside it */
+    for (size_t i = 0; i < d->n; i++)
+        if (d->type[i] == VRES_FIXED) NEAR(d->mass_p[i], 1000 * 0.01, 1e-12);
+    ck_assert_uint_eq(s->nbodies, 1);
+    NEAR(s->body[0].mass, 13 * 500 * 0.01 / 2, 1e-12);
+    NEAR(s->body[0].center[0], 1.5, 1e-12);
+    NEAR(s->body[0].center[2], 0.2, 1e-12);
+    vres_store_free(s);
+    /* mDBC: with the tank's normals inverted (fluid inside), the bottom's lattice node at z=-0.1 and
+     * its centre below at z=-0.15 both point at the interface z=-0.05 */
+    snprintf(cmds, sizeof cmds, "%s<setnormalinvert invert=\"true\"/>%s", WATER, TANK);
+    s = rd(mkcase(bcc, DEF2D, cmds, "", ""));
+    ck_assert_ptr_nonnull(s);
+    d = &s->dom[0];
+    double node[3] = {0.5, 0, -0.1};
+    long a = find_at(d, node, VRES_FIXED), b = find_at(d, below, VRES_FIXED);
+    ck_assert(a >= 0 && b >= 0);
+    ck_assert(fabs(d->normal[3 * a]) < 1e-7 && fabs(d->normal[3 * a + 2] - 0.05) < 1e-7);
+    ck_assert(fabs(d->normal[3 * b]) < 1e-7 && fabs(d->normal[3 * b + 2] - 0.1) < 1e-7);
+    vres_store_free(s);
+    /* a fluid drawn over a wall erases the wall's centres under it, and a centre whose cell has a
+     * fluid corner goes too: wall x 0..0.2 (18 nodes), centres at x 0.05 and 0.15 (10) */
+    const char *over = "<setdrawmode mode=\"full\"/><setmkbound mk=\"0\"/><drawbox><boxfill>solid</boxfill><point x=\"0\" "
+                       "y=\"0\" z=\"0\"/><size x=\"0.5\" y=\"0\" z=\"0.5\"/></drawbox><setmkfluid mk=\"0\"/><drawbox>"
+                       "<boxfill>solid</boxfill><point x=\"0.3\" y=\"0\" z=\"0\"/><size x=\"0.2\" y=\"0\" z=\"0.5\"/></drawbox>";
+    s = rd(mkcase(bcc, DEF2D, over, "", ""));
+    ck_assert_ptr_nonnull(s);
+    ck_assert_uint_eq(vres_domain_count(&s->dom[0], VRES_FLUID), 18);
+    ck_assert_uint_eq(vres_domain_count(&s->dom[0], VRES_FIXED), 18 + 10);
+    vres_store_free(s);
+}
+END_TEST
+
 /* Gauges and inlet/outlet zones are kept as XML text, their #expressions evaluated. */
 /* <boxfill>all^top</boxfill> draws what "bottom | left | right | front | back" draws; shapes after
  * <setactive drawpoints="0"> paint nothing until <resetdraw>. */
@@ -703,13 +768,13 @@ static int in_window(const double *x, const double *lo, const double *hi, const 
 /* Redrawing a case at another dp in a window minus a hole gives exactly the particles (type,
  * mk, normal, density) a whole redrawing has there, although the fluid is a fill seeded
  * outside the window and the window cuts the water column; the constants stay the root's. */
-START_TEST(redraw_clipped)
+static void redraw_clipped_with(const char *consts)
 {
     const char *cmds = "<setmkbound mk=\"1\"/><setnormalinvert invert=\"true\"/><drawbox><boxfill>bottom | left | right</boxfill>"
                        "<point x=\"-0.1\" y=\"-1\" z=\"-0.1\"/><size x=\"1.2\" y=\"2\" z=\"1.1\"/><layers vdp=\"0,1\"/></drawbox>"
                        "<setmkfluid mk=\"2\"/><fillbox x=\"0.1\" y=\"0\" z=\"0.1\"><modefill>void</modefill>"
                        "<point x=\"0\" y=\"-1\" z=\"0\"/><size x=\"1\" y=\"2\" z=\"0.5\"/></fillbox>";
-    vres_store *root = rd(mkcase("<hswl value=\"0\" auto=\"true\"/>", DEF2D, cmds, "", ""));
+    vres_store *root = rd(mkcase(consts, DEF2D, cmds, "", ""));
     ck_assert_ptr_nonnull(root);
     ck_assert_uint_gt(vres_domain_count(&root->dom[0], VRES_FLUID), 0);
     vres_store *whole = vres_case_redraw(root, 0.05, NULL);
@@ -733,6 +798,22 @@ START_TEST(redraw_clipped)
     ck_assert_uint_eq(c->n, nin);
     ck_assert_uint_gt(vres_domain_count(c, VRES_FLUID), 20); /* the fill reached the window */
     for (size_t i = 0; i < c->n; i++) ck_assert(in_window(&c->pos[3 * i], lo, hi, hlo[0], hhi[0]));
+    /* a window whose left side cuts between the right wall's outer centre layer (x 1.175) and
+     * the walls beside it (1.15): those centres have their wall corners outside it, yet are kept
+     * (the clipped drawing sees a dp around its window) */
+    double blo[3] = {1.16, 0, -0.3}, bhi[3] = {1.49, 0, 0.3};
+    vres_clip bclip = {{blo[0], blo[1], blo[2]}, {bhi[0], bhi[1], bhi[2]}, 0, NULL, NULL};
+    vres_store *bpart = vres_case_redraw(root, 0.05, &bclip);
+    ck_assert_ptr_nonnull(bpart);
+    size_t bin = 0;
+    for (size_t i = 0; i < w->n; i++) {
+        const double *x = &w->pos[3 * i];
+        if (!in_window(x, blo, bhi, NULL, NULL)) continue;
+        bin++;
+        ck_assert_msg(find_at(&bpart->dom[0], x, w->type[i]) >= 0, "particle (%g, %g) missing from the clipped drawing", x[0], x[2]);
+    }
+    ck_assert_uint_eq(bpart->dom[0].n, bin);
+    vres_store_free(bpart);
     /* one equation of state: the root's hswl, cs0 and B; h and the masses follow dp */
     const char *same[] = {"hswl", "cs0", "B", "rhop0", "gamma", "hdp"};
     for (int k = 0; k < 6; k++) NEAR(par(part, same[k]), par(root, same[k]), 1e-12);
@@ -749,6 +830,14 @@ START_TEST(redraw_clipped)
     vres_store_free(part);
     vres_store_free(whole);
     vres_store_free(root);
+}
+
+/* ... on the cubic lattice and with body-centred walls (lattice 2: the centre points near the
+ * window's edges are kept or dropped as the whole drawing does, which sees their cells whole) */
+START_TEST(redraw_clipped)
+{
+    redraw_clipped_with("<hswl value=\"0\" auto=\"true\"/>");
+    redraw_clipped_with("<hswl value=\"0\" auto=\"true\"/><lattice bound=\"2\" fluid=\"1\"/>");
 }
 END_TEST
 
@@ -800,6 +889,7 @@ static Suite *suite(void)
     tcase_add_test(t, skips_and_refusals);
     tcase_add_test(t, mkorient);
     tcase_add_test(t, output_only_words);
+    tcase_add_test(t, lattice_bcc);
     tcase_add_test(t, special_kept);
     tcase_add_test(t, boxfill_except_and_setactive);
     tcase_add_test(t, redraw_clipped);
