@@ -14,6 +14,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -846,50 +847,55 @@ static void drop_holes(const cd_ctx *c, vres_domain *d)
     for (size_t i = 0; i < m; i++) d->id[i] = i;
 }
 
-/* A lattice node's integer coordinates and what it holds (centre_walls' look-up). */
-typedef struct nodekey {
-    long long i[3]; /* (x - ref) / dp per axis (y 0 in 2D) */
-    int type;       /* VRES_FLUID or VRES_FIXED */
-} nodekey;
-
-/* qsort/bsearch order of nodekey: by coordinates. */
-static int nodekey_cmp(const void *a, const void *b)
+/* qsort/bsearch order of uint64_t. */
+static int u64_cmp(const void *a, const void *b)
 {
-    const nodekey *p = a, *q = b;
-    for (int k = 0; k < 3; k++)
-        if (p->i[k] != q->i[k]) return p->i[k] < q->i[k] ? -1 : 1;
-    return 0;
+    uint64_t p = *(const uint64_t *)a, q = *(const uint64_t *)b;
+    return p < q ? -1 : p > q;
 }
 
 /* Lattice 2 (body-centred cubic walls): append to tmp, which holds the lattice's particles, the
  * wall nodes of the centre lattice whose cell has a wall corner and no fluid corner (2^dim
  * corners: the lattice's nodes around it). The walls were drawn on both lattices; the rule drops
  * centre points that a later fluid drawing or fill left amid the fluid, or that no wall of the
- * lattice holds (the far side of a sheet the fluid wets on both sides). Returns the number added. */
+ * lattice holds. The look-up is a sorted list of the lattice's particles, 8 bytes each: node
+ * index (numbered from pointmin on the whole lattice) times 2, plus 1 for fluid. Returns the
+ * number added. */
 static size_t centre_walls(cd_ctx *c, vres_domain *tmp)
 {
     vres_domain cen;
     memset(&cen, 0, sizeof cen);
     vres_canvas_emit(c->centre, &cen);
-    size_t n0 = tmp->n, added = 0;
-    nodekey *key = vres_xmalloc(sizeof *key * (n0 ? n0 : 1));
-    for (size_t i = 0; i < n0; i++) {
-        for (int a = 0; a < 3; a++)
-            key[i].i[a] = a == 1 && c->dim == 2 ? 0 : llround((tmp->pos[3 * i + a] - c->ref[a]) / c->dp);
-        key[i].type = tmp->type[i];
+    long long org[3], n[3];
+    for (int a = 0; a < 3; a++) {
+        int flat = a == 1 && c->dim == 2;
+        org[a] = flat ? 0 : (long long)ceil((c->pmin[a] - c->ref[a]) / c->dp - 1e-6);
+        n[a] = flat ? 1 : (long long)floor((c->pmax[a] - c->ref[a]) / c->dp + 1e-6) - org[a] + 1;
     }
-    qsort(key, n0, sizeof *key, nodekey_cmp);
+    size_t n0 = tmp->n, added = 0;
+    uint64_t *key = vres_xmalloc(sizeof *key * (n0 ? n0 : 1));
+    size_t nk = 0;
+    for (size_t i = 0; i < n0; i++) {
+        long long q[3];
+        for (int a = 0; a < 3; a++)
+            q[a] = a == 1 && c->dim == 2 ? 0 : llround((tmp->pos[3 * i + a] - c->ref[a]) / c->dp) - org[a];
+        if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= n[0] || q[1] >= n[1] || q[2] >= n[2]) continue;
+        key[nk++] = 2 * (uint64_t)(q[0] + n[0] * (q[1] + n[1] * q[2])) + (tmp->type[i] == VRES_FLUID);
+    }
+    qsort(key, nk, sizeof *key, u64_cmp);
     for (size_t j = 0; j < cen.n; j++) {
-        if (cen.type[j] == VRES_FLUID) continue; /* never painted: fluid reaches the centres as void */
         long long lo[3];
         for (int a = 0; a < 3; a++)
-            lo[a] = a == 1 && c->dim == 2 ? 0 : llround((cen.pos[3 * j + a] - c->ref[a]) / c->dp - 0.5);
+            lo[a] = a == 1 && c->dim == 2 ? 0 : llround((cen.pos[3 * j + a] - c->ref[a]) / c->dp - 0.5) - org[a];
         int walls = 0, fluid = 0;
         for (int q = 0; q < 8; q++) {
             if (c->dim == 2 && (q & 2)) continue;
-            nodekey k = {{lo[0] + (q & 1), lo[1] + (q >> 1 & 1), lo[2] + (q >> 2 & 1)}, 0};
-            const nodekey *f = bsearch(&k, key, n0, sizeof *key, nodekey_cmp);
-            if (f) walls += f->type != VRES_FLUID, fluid += f->type == VRES_FLUID;
+            long long v[3] = {lo[0] + (q & 1), lo[1] + (q >> 1 & 1), lo[2] + (q >> 2 & 1)};
+            if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= n[0] || v[1] >= n[1] || v[2] >= n[2]) continue;
+            uint64_t k = 2 * (uint64_t)(v[0] + n[0] * (v[1] + n[1] * v[2]));
+            walls += bsearch(&k, key, nk, sizeof *key, u64_cmp) != NULL;
+            k++;
+            fluid += bsearch(&k, key, nk, sizeof *key, u64_cmp) != NULL;
         }
         if (!walls || fluid) continue;
         size_t at = vres_domain_push(tmp, &cen.pos[3 * j], VRES_FIXED, cen.mk[j]);
