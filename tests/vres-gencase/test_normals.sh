@@ -65,3 +65,22 @@ line=$(grep -n "actual | walls" "$T/mode.xml" | cut -d: -f1)
 expect_err 1 "mode.xml:$line: <setshapemode>: unknown word 'walls'" "an unknown setshapemode word" \
     "$ASAN/vres-gencase" "$T/mode.xml" -o "$T/x.h5"
 expect 0 "the ASan build reads the good case cleanly" "$ASAN/vres-gencase" -q "$CASE" -o "$T/a.h5"
+
+# <lattice bound="2">: the walls' cell centres too, half a dp outside each of the three layers'
+# sheets (1004 + 1010 + 1016 = 3030 by the counts above, each layer's sheet a centre further
+# along its faces), measured against the same surface: their normals reach it as their
+# neighbours' do (the left wall's centres at x -0.005 and -0.015: 0.01 and 0.02; the one at
+# -0.025 lies beyond distanceh 2h = 0.028 m and gets none)
+sed 's|<constantsdef>|<constantsdef><lattice bound="2" fluid="1" />|' "$CASE" >"$T/bcc.xml"
+expect 0 "the mDBC dam break with body-centred walls generates" "$BIN/vres-gencase" "$T/bcc.xml" -o "$T/b.h5"
+values /Domains/D0/Type "$T/b.h5" >"$T/type"
+check "lattice 2: 20000 fluid" [ "$(grep -cx 0 "$T/type")" -eq 20000 ]
+check "lattice 2: 3021 + 3030 walls" [ "$(grep -cx 2 "$T/type")" -eq 6051 ]
+values /Domains/D0/Position "$T/b.h5" | paste - - - >"$T/pos"
+values /Domains/D0/Normal "$T/b.h5" | paste - - - >"$T/nor"
+paste "$T/type" "$T/pos" "$T/nor" >"$T/all"
+check "lattice 2: left wall face (0, 1): (0.005, 0) as before" normal 0.005 0 0 1
+check "lattice 2: centre (-0.005, 1.005): (0.01, 0)" normal 0.01 0 -0.005 1.005
+check "lattice 2: centre (-0.015, 1.005): (0.02, 0)" normal 0.02 0 -0.015 1.005
+check "lattice 2: centre (-0.025, 1.005): none, beyond 2h" normal 0 0 -0.025 1.005
+check "lattice 2: floor centre (2.005, -0.015): (0, 0.02)" normal 0 0.02 2.005 -0.015
