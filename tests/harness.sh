@@ -62,6 +62,22 @@ check() {
     if "$@"; then ok "$name"; else notok "$name"; fi
 }
 
+# same_after_restart NAME RUNDIR FROM CMP...: copy run RUNDIR (vres-run, one domain) to RUNDIR.r,
+# restart the copy from its snap_FROM.h5 and check that each snap_CMP.h5's positions,
+# velocities and densities equal the uninterrupted run's (bit for bit: h5diff).
+same_after_restart() {
+    local name=$1 dir=$2 from=$3 cmp ds
+    shift 3
+    rm -rf "$dir.r" && cp -r "$dir" "$dir.r"
+    expect 0 "$name: restart from snap_$from.h5" "$BIN/vres-run" -q --threads 1 --restart "$dir.r/snap_$from.h5"
+    for cmp in "$@"; do
+        for ds in Position Velocity Density; do
+            check "$name: snap $cmp $ds equal to the uninterrupted run's" \
+                h5diff -q "$dir/snap_$cmp.h5" "$dir.r/snap_$cmp.h5" /Domains/D0/$ds /Domains/D0/$ds
+        done
+    done
+}
+
 # nothing_in DIR NAME: the directory holds no files (nothing half-written).
 nothing_in() {
     if [ -z "$(ls -A "$1" 2>/dev/null)" ]; then ok "$2"; else notok "$2 (found: $(ls -A "$1" | tr '\n' ' '))"; fi
