@@ -647,6 +647,7 @@ double vres_couple_report(vres_couple *C, const vres_store *s0, const double *dt
         if (C->io) vres_inout_report(C->io, s, f, t, step, total, drift);
         fflush(f);
     }
+    if (C->io) vres_inout_watch(C->io, s, t, step);
     free(nf), free(nb), free(mf), free(pend);
     if (C->mass0 > 0 && fabs(total - net - C->mass0) > bound)
         vres_warn("t = %.6g s, step %ld: total fluid mass %.9g kg drifted %+.3g%% since the start, more than one "

@@ -36,6 +36,7 @@ typedef struct inout_zone {
     int inflow;             /* 1 while fluid flows in through the zone (its segments' net inflow is
                                positive), 0 while it does not, -1 before the first step */
     int nturn;              /* changes of that direction reported on stderr */
+    int crowded;            /* 1 once crowding in front of the zone has been reported */
 } inout_zone;
 
 struct vres_inout {
@@ -51,6 +52,13 @@ struct vres_inout {
 
 /* Changes of a zone's flow direction reported on stderr before they are only counted. */
 #define INOUT_TURNS_SAID 5
+/* The crowding watch (vres_inout_watch): the band in front of a face it measures, in zone
+   depths, and the ratio of claimed to available room above which it warns. A band of two
+   depths (8 layers for DualSPHysics' usual 4) holds 2 x layers rows of an undisturbed
+   lattice, so a row straddling its edge moves the ratio by at most 1/(2 layers), 12.5% for 4
+   layers; 1.25 leaves as much again for a real, not a sampled, excess. */
+#define INOUT_CROWD_DEPTHS 2.0
+#define INOUT_CROWD_MAX 1.25
 
 int vres_inout_count(const vres_store *s)
 {
@@ -385,6 +393,41 @@ void vres_inout_report(const vres_inout *Z, const vres_store *s, FILE *f, double
                 t, step, zn->z.id, 0.0, (size_t)0, nin, net, L->created, L->created_m, L->n[VRES_EV_TO_FLUID],
                 L->n[VRES_EV_TO_BUFFER], L->n[VRES_EV_DEL_BUFFER], L->m[VRES_EV_DEL_BUFFER], L->n[VRES_EV_DEL_FLUID],
                 L->m[VRES_EV_DEL_FLUID], (size_t)0, 0.0, pend, total, drift);
+    }
+}
+
+double vres_inout_crowding(const vres_inout *Z, int k, const vres_store *s)
+{
+    const vres_domain *d = &s->dom[0];
+    const inout_zone *zn = &Z->zone[k];
+    const vres_inout_zone *z = &zn->z;
+    const double w = INOUT_CROWD_DEPTHS * z->depth; /* the band's width along n (m) */
+    double claimed = 0, sp, u1, u2;
+    for (size_t i = 0; i < d->n; i++) {
+        if (!vres_type_is_fluid(d->type[i])) continue;
+        vres_inout_coords(z, &d->pos[3 * i], &sp, &u1, &u2);
+        if (sp >= 0 && sp < w && u1 >= 0 && u1 <= z->len1 && (z->dim == 2 || (u2 >= 0 && u2 <= z->len2)))
+            claimed += d->mass_p[i] / d->rho[i];
+    }
+    return claimed / (w * z->len1 * (z->dim == 2 ? 1.0 : z->len2));
+}
+
+void vres_inout_watch(vres_inout *Z, const vres_store *s, double t, long step)
+{
+    for (int k = 0; k < Z->nz; k++) {
+        inout_zone *zn = &Z->zone[k];
+        const double r = vres_inout_crowding(Z, k, s);
+        if (zn->crowded || !(r > INOUT_CROWD_MAX)) continue;
+        zn->crowded = 1;
+        vres_warn("t = %.6g s, step %ld: inlet/outlet zone %d (case line %d): the fluid within %g m of its face claims "
+                  "%.2f times the room it has (sum of m/rho over the band): particles pile up there, their density no "
+                  "longer following their spacing%s (said once per zone; vres-run(1), OPEN BOUNDARIES)",
+                  t, step, zn->z.id, zn->line, INOUT_CROWD_DEPTHS * zn->z.depth, r,
+                  zn->z.vmode == VRES_INOUT_V_FIXED && zn->z.rmode != VRES_INOUT_RHO_EXTRAP
+                      ? "; the zone imposes both velocity and density, which over-determines a subsonic inlet "
+                        "whenever the fluid's pressure differs from the imposed density's: imposerhop mode 2 "
+                        "(extrapolated) leaves the density to the fluid"
+                      : "");
     }
 }
 

@@ -51,6 +51,14 @@ size_t vres_inout_nseg(const vres_inout *Z);
  * total and drift as the domains' lines. */
 void vres_inout_report(const vres_inout *Z, const vres_store *s, FILE *f, double t, long step, double total,
                        double drift);
+/* The room the fluid claims in front of zone k's face (the index in Z, 0 first) over the room
+ * there is: the sum of m/rho of store s's fluid within two zone depths past the face, within
+ * its span, over that band's length (2D, per unit width) or volume. About 1 for an orderly
+ * flow; above 1 where particles pile up closer than their density says. */
+double vres_inout_crowding(const vres_inout *Z, int k, const vres_store *s);
+/* At an output (store s just downloaded, time t s, step): warn once per zone whose crowding
+ * exceeds 1.25, naming the zone and, for a zone imposing both velocity and density, why. */
+void vres_inout_watch(vres_inout *Z, const vres_store *s, double t, long step);
 /* Put the zones' segment masses (as /Interfaces entries with their zone) and ledgers into s. */
 void vres_inout_save(const vres_inout *Z, vres_store *s);
 
