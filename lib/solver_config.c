@@ -288,11 +288,7 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     for (size_t k = 0; k < set->n; k++)
         if (read_domain(s, c, k, &set->dom[k], &bad) != 0) return -1;
     if (check_bodies(s) != 0) bad = 1;
-    if (c->nzones > 0 && s->ndomains > 1)
-        vres_error("%d inlet/outlet zone%s in a store of %zu domains: zones with variable resolution are not "
-                   "implemented yet (run the case at one resolution: vres-partition --single)", c->nzones,
-                   c->nzones == 1 ? "" : "s", s->ndomains), bad = 1;
-    else if (s->inout_xml && c->nzones <= 0)
+    if (s->inout_xml && c->nzones <= 0)
         vres_error("the store keeps an <inout> element but no resolved zone (parameters inout_*): make it again with "
                    "this vres-gencase"), bad = 1;
     for (size_t k = 0; k < set->n; k++)

@@ -497,7 +497,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     (void)c, (void)t;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
-    if (C->io) return zones_exchange(C, set, t, dt);
+    if (C->ndom == 1) return zones_exchange(C, set, t, dt);
     double t0 = vres_run_wall_now();
     track_move(C, t); /* the boxes that follow a body where it is at the new time */
     /* the crossing count reads the step's start positions: only then must they follow the sort */
@@ -517,7 +517,9 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     if (classify_domains(C, set, 1) != 0 || sort_domains(C, set, 0, 1) != 0 || buffers(C, set, 1) != 0) return -1;
     C->fresh = 1;
     C->wall += vres_run_wall_now() - t0;
-    return 0;
+    /* the root's zones after the domains' exchange: they lie clear of every box and band
+       (vres_inout_open), so neither exchange moves what the other reads */
+    return C->io ? zones_exchange(C, set, t, dt) : 0;
 }
 
 int vres_couple_start(run_set *set, const run_cfg *c)
@@ -525,18 +527,16 @@ int vres_couple_start(run_set *set, const run_cfg *c)
     (void)c;
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
-    if (C->io) {
+    const vres_couple_parts keep = C->part; /* the start is not in wall: nor in its parts */
+    if (C->ndom > 1 && (sort_domains(C, set, 0, 0) != 0 || classify_domains(C, set, 0) != 0 ||
+                        sort_domains(C, set, 0, 1) != 0 || buffers(C, set, 1) != 0))
+        return -1;
+    C->part = keep;
+    if (C->io) { /* the root's zones (clear of the boxes): their fill and state */
         vres_backend *b = &set->b[0];
         vres_inout_time(C->io, C->t0);
         if (b->sort(b, 0) != 0 || vres_inout_start(C->io, b, &C->next_id) != 0) return -1;
-        C->fresh = 1;
-        return 0;
     }
-    const vres_couple_parts keep = C->part; /* the start is not in wall: nor in its parts */
-    if (sort_domains(C, set, 0, 0) != 0 || classify_domains(C, set, 0) != 0 || sort_domains(C, set, 0, 1) != 0 ||
-        buffers(C, set, 1) != 0)
-        return -1;
-    C->part = keep;
     C->fresh = 1;
     return 0;
 }

@@ -189,6 +189,52 @@ static int zone_resume(const vres_store *s, inout_zone *zn)
     return 0;
 }
 
+/* Zone zn's reach (m): every point its exchange reads or writes lies in the box lo..hi: from
+ * twice its depth behind the face (deletions behind the back) to twice its depth past it (the
+ * ghost nodes, the crowding band) and a kernel support 2h beyond, across its span widened by 2h. */
+static void zone_reach(const inout_zone *zn, double h, double lo[3], double hi[3])
+{
+    const vres_inout_zone *z = &zn->z;
+    const double s[2] = {-2.0 * z->depth - 2.0 * h, 2.0 * z->depth + 2.0 * h};
+    const double u1[2] = {-2.0 * h, z->len1 + 2.0 * h}, u2[2] = {-2.0 * h, z->len2 + 2.0 * h};
+    for (int a = 0; a < 3; a++) lo[a] = INFINITY, hi[a] = -INFINITY;
+    for (int i = 0; i < 8; i++) {
+        const double a1 = s[i & 1], b1 = u1[(i >> 1) & 1], c1 = z->dim == 3 ? u2[i >> 2] : 0.0;
+        for (int a = 0; a < 3; a++) {
+            const double x = z->p0[a] + a1 * z->n[a] + b1 * z->t1[a] + c1 * z->t2[a];
+            lo[a] = fmin(lo[a], x), hi[a] = fmax(hi[a], x);
+        }
+    }
+}
+
+/* 0 when zone zn of store s (its root) lies clear of every refinement box: its reach
+ * (zone_reach) meets no child domain's box with its buffer band nor the root's own band
+ * inside it (both are the child's outer box); else -1 after saying which. A zone in the
+ * root only: the child's coupling and the zone's exchange then never read what the other
+ * writes in the same step. */
+static int zone_clear(const vres_store *s, const inout_zone *zn)
+{
+    if (s->ndomains < 2 || !s->region) return 0;
+    double lo[3], hi[3];
+    zone_reach(zn, s->dom[0].h, lo, hi);
+    for (size_t k = 1; k < s->ndomains; k++) {
+        const vres_region *r = &s->region[k];
+        int meets = 1;
+        for (int a = 0; a < 3; a++)
+            if (!(s->dim == 2 && a == 1) && (hi[a] <= r->buff_lo[a] || lo[a] >= r->buff_hi[a])) meets = 0;
+        if (!meets && !r->track) continue;
+        vres_error("inlet/outlet zone %d (case line %d): %s domain D%zu's box and buffer band, (%g, %g, %g) to "
+                   "(%g, %g, %g) m; a zone must lie in the root domain, its reach (%g, %g, %g) to (%g, %g, %g) m "
+                   "(two zone depths either side of its face and 2h beyond) clear of every refinement box "
+                   "(vres-run(1), Inlet/outlet zones)", zn->z.id, zn->line,
+                   r->track ? "a zone with a box that follows a body is not implemented yet:" : "it reaches into",
+                   k, r->buff_lo[0], r->buff_lo[1], r->buff_lo[2], r->buff_hi[0], r->buff_hi[1], r->buff_hi[2],
+                   lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+        return -1;
+    }
+    return 0;
+}
+
 vres_inout *vres_inout_open(const vres_store *s, const run_cfg *c, int restarted, int *bad)
 {
     const int nz = vres_inout_count(s);
@@ -210,6 +256,12 @@ vres_inout *vres_inout_open(const vres_store *s, const run_cfg *c, int restarted
         inout_zone *zn = &Z->zone[k];
         if (zone_read(s, c, k + 1, zn) != 0) {
             Z->nz = k;
+            vres_inout_close(Z);
+            *bad = 1;
+            return NULL;
+        }
+        if (zone_clear(s, zn) != 0) {
+            Z->nz = k + 1;
             vres_inout_close(Z);
             *bad = 1;
             return NULL;
