@@ -74,6 +74,11 @@ static void one_plane(cd_ctx *c, xmlNodePtr e, vres_domain *d)
     for (size_t i = 0; i < d->n; i++)
         if (vres_type_is_wall(d->type[i]) && mk_in_list(mks, d->mk[i]) == 1)
             far = fmax(far, d->pos[3 * i] * n[0] + d->pos[3 * i + 1] * n[1] + d->pos[3 * i + 2] * n[2]);
+    if (far == -INFINITY && c->clip) { /* a sub-domain's redraw: that mk's walls lie in other domains */
+        cd_note(c, e, "<norplane mkbound=\"%s\">: no wall particle of that mk in this domain's region", mks);
+        free(mks);
+        return;
+    }
     if (far == -INFINITY) {
         cd_err(c, e, "<norplane mkbound=\"%s\">: the case draws no wall particle of that mk", mks);
         free(mks);

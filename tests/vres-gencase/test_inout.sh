@@ -149,6 +149,21 @@ check "norplane: the 140 particles of the two bottom rows get the vector to the 
               e = $7 + ($4 + 0.12); if (e < 0) e = -e; if (e < 1e-6 && $5 == 0 && $6 == 0) n++} END {print n + 0}' "$T/nor")" -eq 140 ]
 check "norplane: every other wall particle has none" \
     [ "$(awk '$1 != 0 && ($5 != 0 || $6 != 0 || $7 != 0)' "$T/nor" | wc -l)" -eq 140 ]
+# a refinement box clear of the walls (at dp 0.02: x 0.8..1.2, z 0.12..0.28 m, its band
+# reaching z 0.092 m): the box's domain draws no wall of the plane's mk, which is not an error
+# there (a note), and the root's walls keep the plane's normals (DualSPHysics' cylinder case:
+# norplanes for the channel's walls, a box around the cylinder)
+sed 's|</geometry>|</geometry><vres><bufferbox><point x="0.8" y="0" z="0.12" /><endpoint x="1.2" y="0" z="0.28" /><dpratio v="2" /></bufferbox></vres>|' "$T/norplane.xml" >"$T/norbox.xml"
+expect 0 "<norplane> and a box clear of its walls: vres-gencase at dp 0.02" "$GEN" -q --dp 0.02 "$T/norbox.xml" -o "$T/norbox.h5"
+expect 0 "vres-partition draws the box's domain without the plane's walls" "$ASAN/vres-partition" -v "$T/norbox.h5" -o "$T/norboxp.h5"
+check "said (-v): no wall of that mk in the box's region" grep -q 'norplane mkbound="0">: no wall particle of that mk in this domain' "$ERR"
+walln() { paste <(values /Domains/D0/Type "$1") <(values /Domains/D0/Position "$1" | paste - - -) \
+              <(values /Domains/D0/Normal "$1" | paste - - -) | awk '$1 != 0 && ($5 != 0 || $6 != 0 || $7 != 0)' | sort; }
+walln "$T/norbox.h5" >"$T/norb0"
+walln "$T/norboxp.h5" >"$T/norb1"
+check "the root's walls after partition keep the plane's normals ($(wc -l <"$T/norb1") of them, as vres-gencase's)" \
+    bash -c "[ -s '$T/norb0' ] && cmp -s '$T/norb0' '$T/norb1'"
+check "the box's domain has no wall" [ "$(values /Domains/D1/Type "$T/norboxp.h5" | awk '$1 >= 2 && $1 <= 4' | wc -l)" -eq 0 ]
 sed 's|<point auto="true" />|<point auto="true" /><onlypos><posmin x="0" /></onlypos>|' "$T/norplane.xml" >"$T/norpos.xml"
 line=$(grep -n '<onlypos>' "$T/norpos.xml" | cut -d: -f1)
 bad "<norplane><onlypos> refused by name" "norpos\.xml:$line: element <onlypos> is not supported in <norplane>" "$T/norpos.xml"
