@@ -1303,6 +1303,7 @@ vres_store *vres_case_read(const char *xml, size_t len, const char *src, const c
     c->dp_origin = "xml";
     c->clip = o ? o->clip : NULL;
     c->root = o ? o->root : NULL;
+    c->dir = dir;
     if (c->clip && (!c->root || !c->root->ndomains)) {
         vres_error("%s: a clipped drawing needs the root store drawn whole", c->src);
         return NULL;

@@ -255,8 +255,9 @@ static int child_ang(cd_ctx *c, xmlNodePtr seg, const char *name, double f, doub
     return r;
 }
 
-/* One motion segment element into m. Returns 0, or -1 when it is not a supported segment. */
-static int read_segment(cd_ctx *c, xmlNodePtr seg, vres_motion_seg *m)
+/* One motion segment element of the body of mkbound mk into m. Returns 0, or -1 when it is not a
+ * supported segment. */
+static int read_segment(cd_ctx *c, xmlNodePtr seg, int mk, vres_motion_seg *m)
 {
     const char *n = cd_name(seg);
     static const char *const attrs[] = {"id", "duration", "next", "anglesunits", NULL};
@@ -269,9 +270,11 @@ static int read_segment(cd_ctx *c, xmlNodePtr seg, vres_motion_seg *m)
     else if (!strcmp(n, "mvrotace")) m->kind = VRES_MV_ROTACE;
     else if (!strcmp(n, "mvrectsinu")) m->kind = VRES_MV_RECTSIN;
     else if (!strcmp(n, "mvrotsinu")) m->kind = VRES_MV_ROTSIN;
+    else if (!strcmp(n, "mvrectfile")) m->kind = VRES_MV_RECTFILE;
+    else if (!strcmp(n, "mvrotfile")) m->kind = VRES_MV_ROTFILE;
     else {
         cd_err(c, seg, "element <%s> is not supported in <objreal> (supported: wait, mvrect, mvrectace, mvrot, "
-                       "mvrotace, mvrectsinu, mvrotsinu)", n);
+                       "mvrotace, mvrectsinu, mvrotsinu, mvrectfile, mvrotfile)", n);
         return -1;
     }
     cd_check_attrs(c, seg, attrs);
@@ -319,6 +322,15 @@ static int read_segment(cd_ctx *c, xmlNodePtr seg, vres_motion_seg *m)
         m->angphase *= f;
         read_axis(c, seg, m);
         break;
+    case VRES_MV_RECTFILE:
+        cd_check_children(c, seg, (const char *const[]){"file", NULL});
+        cd_read_mvfile(c, seg, mk, 0, f, m);
+        break;
+    case VRES_MV_ROTFILE:
+        cd_check_children(c, seg, (const char *const[]){"file", "axisp1", "axisp2", NULL});
+        cd_read_mvfile(c, seg, mk, 1, f, m);
+        read_axis(c, seg, m);
+        break;
     }
     return 0;
 }
@@ -350,9 +362,10 @@ static void read_objreal(cd_ctx *c, xmlNodePtr e, vres_store *s)
             continue;
         }
         vres_motion_seg m;
-        if (read_segment(c, g, &m) != 0) continue;
+        if (read_segment(c, g, mk, &m) != 0) continue;
         if (seg_exists(b, m.id)) {
             cd_err(c, g, "motion segment id %d is used twice in <objreal ref=\"%d\">", m.id, mk);
+            free(m.tab);
             continue;
         }
         b->seg = vres_xrealloc(b->seg, sizeof *b->seg * (b->nseg + 1));

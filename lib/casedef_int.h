@@ -127,7 +127,16 @@ typedef struct cd_ctx {
     /* redrawing a sub-domain (vres_case_opts.clip, .root) */
     const vres_clip *clip; /* the region drawn, NULL for the whole domain */
     const vres_store *root;/* the case drawn whole at its root dp, NULL for a case of its own */
+    const char *dir;       /* the case file's directory: files the case names (motion tables) are read
+                              from it; NULL for the current directory */
 } cd_ctx;
+
+/* ---- motion tables (casedef_mvfile.c) ---- */
+/* The table of file-motion segment seg (<mvrectfile>, rot 0; <mvrotfile>, rot 1, its angles
+ * times f, radians per unit) of the body of mkbound mk into m->tab and m->ntab: read from the
+ * file its <file> names (relative to the case's directory), or in a redraw copied from the root
+ * store. 0, or -1 after an error naming the element, or the file and its line. */
+int cd_read_mvfile(cd_ctx *c, xmlNodePtr seg, int mk, int rot, double f, vres_motion_seg *m);
 
 /* ---- messages ---- */
 /* Report a problem at node's line ("SRC:LINE: message") and count it. */

@@ -50,6 +50,37 @@ static void compose(vres_motion_state *m, const double R[9], const double d[3])
     memcpy(m->d, d2, sizeof d2);
 }
 
+/* A file motion's table of segment s at tau seconds into it (held beyond its ends): column a's
+ * value into *v and its slope over the row interval holding tau into *slope (0 beyond the
+ * ends). */
+static void table_at(const vres_motion_seg *s, double tau, int a, double *v, double *slope)
+{
+    const double *T = s->tab;
+    const size_t n = s->ntab;
+    *slope = 0;
+    if (n == 0) {
+        *v = 0;
+        return;
+    }
+    if (!(tau > T[0])) {
+        *v = T[a];
+        return;
+    }
+    if (!(tau < T[4 * (n - 1)])) {
+        *v = T[4 * (n - 1) + a];
+        return;
+    }
+    size_t lo = 0, hi = n - 1; /* T[4 lo] < tau < T[4 hi] */
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (T[4 * mid] <= tau) lo = mid;
+        else hi = mid;
+    }
+    const double t0 = T[4 * lo], t1 = T[4 * hi], f0 = T[4 * lo + a], f1 = T[4 * hi + a];
+    *slope = (f1 - f0) / (t1 - t0);
+    *v = f0 + (tau - t0) * *slope;
+}
+
 /* Segment s after tau seconds of it: its transform (R, d), the velocity field at tau into m's
  * v, w, p, and the linear and angular velocity it ends with (for a next segment that inherits
  * them, vel_prev). vprev, wprev: those the previous segment ended with. */
@@ -81,6 +112,21 @@ static void segment(const vres_motion_seg *s, double tau, const double vprev[3],
             m->v[k] = s->vel[k] * om * cos(s->phase[k] + om * tau);
         }
         break;
+    case VRES_MV_RECTFILE: /* the table's positions less its position at the segment's start */
+        for (int k = 0; k < 3; k++) {
+            double p, p0, slope, slope0;
+            table_at(s, tau, 1 + k, &p, &slope);
+            table_at(s, 0.0, 1 + k, &p0, &slope0);
+            d[k] = p - p0, m->v[k] = slope;
+        }
+        break;
+    case VRES_MV_ROTFILE: { /* the table's angle less its angle at the segment's start */
+        double a0, slope0;
+        table_at(s, tau, 1, &th, &wa);
+        table_at(s, 0.0, 1, &a0, &slope0);
+        th -= a0;
+        break;
+    }
     case VRES_MV_ROT:
         th = s->angvel * tau, wa = s->angvel;
         break;
@@ -98,7 +144,7 @@ static void segment(const vres_motion_seg *s, double tau, const double vprev[3],
     default: /* VRES_MV_WAIT */
         break;
     }
-    if (s->kind == VRES_MV_ROT || s->kind == VRES_MV_ROTACE || s->kind == VRES_MV_ROTSIN) {
+    if (s->kind == VRES_MV_ROT || s->kind == VRES_MV_ROTACE || s->kind == VRES_MV_ROTSIN || s->kind == VRES_MV_ROTFILE) {
         axis_of(s, u);
         rotation(u, s->axis_p1, th, R, d);
         for (int k = 0; k < 3; k++) m->w[k] = wa * u[k], m->p[k] = s->axis_p1[k];
@@ -146,7 +192,9 @@ int vres_motion_check(const vres_body *b)
     for (size_t i = 0; i < b->nseg; i++) {
         const vres_motion_seg *g = &b->seg[i];
         double u[3];
-        if ((g->kind == VRES_MV_ROT || g->kind == VRES_MV_ROTACE || g->kind == VRES_MV_ROTSIN) && !(axis_of(g, u) > 0)) {
+        const int rot = g->kind == VRES_MV_ROT || g->kind == VRES_MV_ROTACE || g->kind == VRES_MV_ROTSIN ||
+                        g->kind == VRES_MV_ROTFILE;
+        if (rot && !(axis_of(g, u) > 0)) {
             vres_error("moving body mkbound %d: motion segment %d has a rotation axis of zero length", b->mkbound, g->id);
             return -1;
         }
@@ -155,7 +203,12 @@ int vres_motion_check(const vres_body *b)
                        b->mkbound, g->id, g->next);
             return -1;
         }
-        if (g->kind < VRES_MV_WAIT || g->kind > VRES_MV_ROTSIN) {
+        if ((g->kind == VRES_MV_RECTFILE || g->kind == VRES_MV_ROTFILE) && !g->ntab) {
+            vres_error("moving body mkbound %d: motion segment %d reads its motion from a table that has no rows",
+                       b->mkbound, g->id);
+            return -1;
+        }
+        if (g->kind < VRES_MV_WAIT || g->kind > VRES_MV_LAST) {
             vres_error("moving body mkbound %d: motion segment %d has an unknown kind %d", b->mkbound, g->id, g->kind);
             return -1;
         }

@@ -205,7 +205,10 @@ void vres_store_free(vres_store *s)
     free(s->overrides);
     for (size_t k = 0; k < s->ndomains; k++) vres_domain_free(&s->dom[k]);
     free(s->dom);
-    for (size_t b = 0; b < s->nbodies; b++) free(s->body[b].seg);
+    for (size_t b = 0; b < s->nbodies; b++) {
+        for (size_t k = 0; k < s->body[b].nseg; k++) free(s->body[b].seg[k].tab);
+        free(s->body[b].seg);
+    }
     free(s->body);
     free(s->box);
     vres_store_free_tree(s);
@@ -639,7 +642,22 @@ static void write_domains(wctx *w, hid_t f, const vres_store *s)
     end_group(w, g);
 }
 
-/* /Bodies and its B<i> groups, each with its Motion table. */
+/* Segment m's table of a file motion (RECTFILE, ROTFILE) as the dataset Table<id> [ntab][4] of
+ * body group bg; nothing for other kinds. */
+static void write_table(wctx *w, hid_t bg, const vres_motion_seg *m)
+{
+    if (!m->ntab) return;
+    char name[32];
+    snprintf(name, sizeof name, "Table%d", m->id);
+    hsize_t dims[2] = {m->ntab, 4};
+    hid_t sp = H5Screate_simple(2, dims, NULL);
+    hid_t d = H5Dcreate2(bg, name, H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    herr_t e = d < 0 ? -1 : H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m->tab);
+    if (e < 0 || (d >= 0 && H5Dclose(d) < 0)) wfail(w, bg, name, 0);
+    H5Sclose(sp);
+}
+
+/* /Bodies and its B<i> groups, each with its Motion table (and a file motion's Table<id>). */
 static void write_bodies(wctx *w, hid_t f, const vres_store *s)
 {
     hid_t g = put_group(w, f, "Bodies", H5P_DEFAULT);
@@ -675,6 +693,7 @@ static void write_bodies(wctx *w, hid_t f, const vres_store *s)
             if (e < 0 || (d >= 0 && H5Dclose(d) < 0)) wfail(w, bg, "Motion", 0);
             H5Sclose(sp);
         }
+        for (size_t k = 0; k < b->nseg && !w->bad; k++) write_table(w, bg, &b->seg[k]);
         end_group(w, bg);
     }
     H5Tclose(mt);
@@ -1454,6 +1473,34 @@ static hid_t get_indexed(rctx *r, hid_t g, const char *prefix, size_t i, size_t 
     return get_group(r, g, name);
 }
 
+/* The table Table<id> of file-motion segment m in body group bg: [n][4] doubles, n >= 1, its
+ * times (column 0) strictly increasing. */
+static void read_table(rctx *r, hid_t bg, vres_motion_seg *m)
+{
+    char name[32], p[300];
+    snprintf(name, sizeof name, "Table%d", m->id);
+    hid_t d = get_dataset(r, bg, name, p, sizeof p);
+    if (d < 0) return;
+    hid_t sp = H5Dget_space(d);
+    hsize_t dims[2] = {0, 0};
+    if (H5Sget_simple_extent_ndims(sp) != 2 || H5Sget_simple_extent_dims(sp, dims, NULL) < 0 || dims[1] != 4 ||
+        dims[0] < 1 || dims[0] > 10000000)
+        rerr(r, "%s: wrong shape ([n][4] expected: time and three values per row)", p);
+    else {
+        m->tab = vres_xcalloc(4 * dims[0], sizeof *m->tab);
+        if (H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m->tab) < 0) rerr(r, "%s: unreadable", p);
+        else m->ntab = dims[0];
+        for (size_t i = 0; i < m->ntab && !r->bad; i++)
+            for (int a = 0; a < 4; a++)
+                if (!isfinite(m->tab[4 * i + a]) || (a == 0 && i > 0 && !(m->tab[4 * i] > m->tab[4 * (i - 1)]))) {
+                    rerr(r, "%s: row %zu: %s", p, i, a ? "not a finite number" : "its time is not after the row before's");
+                    break;
+                }
+    }
+    H5Sclose(sp);
+    H5Dclose(d);
+}
+
 /* The Motion table of body group bg. */
 static void read_motion(rctx *r, hid_t bg, vres_body *b)
 {
@@ -1476,8 +1523,10 @@ static void read_motion(rctx *r, hid_t bg, vres_body *b)
         if (H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, b->seg) < 0) rerr(r, "%s: unreadable", p);
         else b->nseg = n;
         for (size_t i = 0; i < b->nseg && !r->bad; i++)
-            if (b->seg[i].kind < VRES_MV_WAIT || b->seg[i].kind > VRES_MV_ROTSIN)
-                rerr(r, "%s: segment %zu has kind %d (0 to %d expected)", p, i, b->seg[i].kind, VRES_MV_ROTSIN);
+            if (b->seg[i].kind < VRES_MV_WAIT || b->seg[i].kind > VRES_MV_LAST)
+                rerr(r, "%s: segment %zu has kind %d (0 to %d expected)", p, i, b->seg[i].kind, VRES_MV_LAST);
+        for (size_t i = 0; i < b->nseg && !r->bad; i++)
+            if (b->seg[i].kind == VRES_MV_RECTFILE || b->seg[i].kind == VRES_MV_ROTFILE) read_table(r, bg, &b->seg[i]);
     }
     H5Tclose(mt);
     H5Sclose(sp);

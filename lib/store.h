@@ -101,8 +101,13 @@ typedef enum vres_mvkind {
     VRES_MV_ROT = 3,     /* uniform rotation about the axis p1->p2: angvel */
     VRES_MV_ROTACE = 4,  /* accelerated rotation: angvel (initial), angace */
     VRES_MV_RECTSIN = 5, /* sinusoidal rectilinear: ampl, freq, phase per axis */
-    VRES_MV_ROTSIN = 6   /* sinusoidal rotation: ampl (angvel slot), freq, phase */
+    VRES_MV_ROTSIN = 6,  /* sinusoidal rotation: ampl (angvel slot), freq, phase */
+    VRES_MV_RECTFILE = 7,/* rectilinear from a table of positions over time (tab: t, x, y, z) */
+    VRES_MV_ROTFILE = 8  /* rotation about the axis p1->p2 from a table of angles (tab: t, angle, 0, 0) */
 } vres_mvkind;
+
+/* The last segment kind a store may hold. */
+#define VRES_MV_LAST VRES_MV_ROTFILE
 
 /* A motion segment; fields not used by its kind are zero. */
 typedef struct vres_motion_seg {
@@ -119,6 +124,10 @@ typedef struct vres_motion_seg {
     double axis_p1[3]; /* rotation axis first point (m) */
     double axis_p2[3]; /* rotation axis second point (m) */
     int vel_prev;      /* 1 when the initial velocity is inherited from the previous segment */
+    size_t ntab;       /* RECTFILE, ROTFILE: rows of tab (0 for other kinds) */
+    double *tab;       /* [4 ntab] RECTFILE: time (s, from the segment's start), x, y, z (m); ROTFILE: time
+                          (s), angle (rad), 0, 0; times strictly increasing; owned by the segment (the store's
+                          /Bodies/B<i>/Table<id>, not its Motion table) */
 } vres_motion_seg;
 
 /* A moving or floating body: the walls of one mkbound. */

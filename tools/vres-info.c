@@ -192,9 +192,9 @@ static void print_params(FILE *o, const vres_params *P)
 /* One motion segment, with the quantities its kind uses. */
 static void print_segment(FILE *o, const vres_motion_seg *m)
 {
-    static const char *const kind[] = {"wait", "rect", "rectace", "rot", "rotace", "rectsin", "rotsin"};
+    static const char *const kind[] = {"wait", "rect", "rectace", "rot", "rotace", "rectsin", "rotsin", "rectfile", "rotfile"};
     char a[96], b[96], c[96];
-    int known = m->kind >= 0 && m->kind <= VRES_MV_ROTSIN;
+    int known = m->kind >= 0 && m->kind <= VRES_MV_LAST;
     fprintf(o, "    segment %d: %s, ", m->id, known ? kind[m->kind] : "?");
     if (m->duration < 0) fprintf(o, "forever");
     else if (m->next < 0) fprintf(o, "%g s, then stop", m->duration);
@@ -219,6 +219,12 @@ static void print_segment(FILE *o, const vres_motion_seg *m)
     case VRES_MV_ROTSIN:
         fprintf(o, ", ampl %g rad, freq %g Hz, phase %g rad, axis %s to %s m", m->angvel, m->angace, m->angphase,
                 vec3(a, sizeof a, m->axis_p1), vec3(b, sizeof b, m->axis_p2));
+        break;
+    case VRES_MV_RECTFILE:
+    case VRES_MV_ROTFILE:
+        if (m->ntab) fprintf(o, ", %zu rows, t %g to %g s", m->ntab, m->tab[0], m->tab[4 * (m->ntab - 1)]);
+        if (m->kind == VRES_MV_ROTFILE)
+            fprintf(o, ", axis %s to %s m", vec3(a, sizeof a, m->axis_p1), vec3(b, sizeof b, m->axis_p2));
         break;
     default:
         break;
