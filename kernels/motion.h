@@ -28,11 +28,13 @@ typedef struct vres_wall_body {
 /* Moving or floating wall particle i (other types are left alone) to its body's transform: position
  * pos[3i..] = R xr[3i..] + d (m) from its reference position xr, velocity vel[3i..] (m/s) the
  * rigid field there, kept in mvel (the walls' own velocity, which mDBC's slip modes overwrite
- * in vel) too when mvel is not NULL. The body is the first of the nb bodies that moves and
- * has the particle's mk as mkbound; mv[k] is body k's transform. A particle of no body stays. */
+ * in vel) too when mvel is not NULL, and, when nr is not NULL, its mDBC normal (m, the vector
+ * to the wall face) normal[3i..] = R nr[3i..] from its reference normal nr, so that the ghost
+ * node turns with the body. The body is the first of the nb bodies that moves and has the
+ * particle's mk as mkbound; mv[k] is body k's transform. A particle of no body stays. */
 VRES_HD static inline void vres_move_wall_one(size_t i, const uint8_t *type, const int32_t *mk, const double *xr,
-                                              double *pos, float *vel, float *mvel, const vres_motion_state *mv,
-                                              const vres_wall_body *body, size_t nb)
+                                              double *pos, float *vel, float *mvel, const float *nr, float *normal,
+                                              const vres_motion_state *mv, const vres_wall_body *body, size_t nb)
 {
     if (!vres_type_is_placed(type[i])) return;
     size_t k = 0;
@@ -47,13 +49,18 @@ VRES_HD static inline void vres_move_wall_one(size_t i, const uint8_t *type, con
     vel[3 * i + 1] = (float)(m->v[1] + m->w[2] * r[0] - m->w[0] * r[2]);
     vel[3 * i + 2] = (float)(m->v[2] + m->w[0] * r[1] - m->w[1] * r[0]);
     if (mvel) mvel[3 * i] = vel[3 * i], mvel[3 * i + 1] = vel[3 * i + 1], mvel[3 * i + 2] = vel[3 * i + 2];
+    if (!nr) return;
+    const float *n0 = &nr[3 * i];
+    for (int a = 0; a < 3; a++)
+        normal[3 * i + a] = (float)(m->R[3 * a] * n0[0] + m->R[3 * a + 1] * n0[1] + m->R[3 * a + 2] * n0[2]);
 }
 
-/* vres_move_wall_cpu / _cuda (n, type, mk, xr, pos, vel, mvel, mv, body, nb). */
+/* vres_move_wall_cpu / _cuda (n, type, mk, xr, pos, vel, mvel, nr, normal, mv, body, nb). */
 VRES_PARTICLE_LOOP(vres_move_wall, vres_move_wall_one,
                    (const uint8_t *type, const int32_t *mk, const double *xr, double *pos, float *vel, float *mvel,
-                    const vres_motion_state *mv, const vres_wall_body *body, size_t nb),
-                   (type, mk, xr, pos, vel, mvel, mv, body, nb))
+                    const float *nr, float *normal, const vres_motion_state *mv, const vres_wall_body *body,
+                    size_t nb),
+                   (type, mk, xr, pos, vel, mvel, nr, normal, mv, body, nb))
 
 #ifdef __cplusplus
 }

@@ -37,6 +37,7 @@ typedef struct cpu_ctx {
     double *ar;           /* [n] density rates (kg/m^3/s) */
     double *visc;         /* [n] largest x_ab.v_ab/(r^2+eta2) per particle (1/s) */
     double *xref;         /* [3n] moving and floating walls' reference positions (m); NULL without them */
+    float *nref;          /* [3n] their mDBC normals at the reference (m); NULL without mDBC normals */
     float *mvel;          /* [3n] walls' own (motion) velocity, zero for fixed walls (m/s): mDBC no-slip and free
                              slip set the wall particles' vel to what the fluid must see; NULL for other scenes */
     float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
@@ -206,7 +207,8 @@ static void cpu_move_walls(vres_backend *b, const vres_motion_state *mv)
     cpu_ctx *x = ctx_of(b);
     if (!x->xref) return;
     vres_domain *d = x->d;
-    vres_move_wall_cpu(d->n, d->type, d->mk, x->xref, d->pos, d->vel, x->mvel, mv, x->body, x->nbodies);
+    vres_move_wall_cpu(d->n, d->type, d->mk, x->xref, d->pos, d->vel, x->mvel, x->nref, d->normal, mv, x->body,
+                       x->nbodies);
 }
 
 /* The floating bodies' force and torque sums, in slot order. */
@@ -228,6 +230,7 @@ static void cpu_anchor_walls(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
     if (x->xref) memcpy(x->xref, x->d->pos, 3 * b->n * sizeof *x->xref);
+    if (x->nref) memcpy(x->nref, x->d->normal, 3 * b->n * sizeof *x->nref);
 }
 
 /* Wrap along the periodic axes. */
@@ -421,6 +424,9 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
     if (dc->nmoving || dc->nfloating) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    /* mDBC normals turn with their bodies (DualSPHysics 5.4's VRes leaves them unturned) */
+    if ((dc->nmoving || dc->nfloating) && c->mdbc && dc->nnormal)
+        add_work(x, &x->nref, 3 * sizeof *x->nref, VRES_WORK_CARRY, VRES_FIELD_NORMAL);
     if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
     for (int k = 0; k < x->nwork; k++) {
         *x->work[k].p = vres_xmalloc(x->cap * x->work[k].elem + 1);

@@ -63,6 +63,7 @@ typedef struct cuda_ctx {
     float *velm1;         /* [3n] Verlet: velocities of the previous step (m/s); NULL for Symplectic */
     float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
     double *xref;         /* [3n] moving walls' reference positions (m); NULL without moving walls */
+    float *nref;          /* [3n] their mDBC normals at the reference (m); NULL without mDBC normals */
     float *mvel;          /* [3n] walls' own (motion) velocity, zero for fixed walls (m/s): mDBC no-slip and free
                              slip overwrite the walls' vel with what the fluid must see; NULL for other scenes */
     double *x2d;          /* [2n] 2D: x then z positions, split by axis for the 2D interaction (m); NULL in 3D */
@@ -478,8 +479,8 @@ static void cu_move_walls(vres_backend *b, const vres_motion_state *mv)
     cuda_ctx *x = ctx_of(b);
     if (x->failed || !x->xref) return;
     if (!ok(x, cudaMemcpy(x->dmv, mv, x->nbodies * sizeof *mv, cudaMemcpyHostToDevice), "copy the motions")) return;
-    vres_move_wall_cuda(b->n, x->dev.type, x->dev.mk, x->xref, x->dev.pos, x->dev.vel, x->mvel, x->dmv, x->dbody,
-                        x->nbodies);
+    vres_move_wall_cuda(b->n, x->dev.type, x->dev.mk, x->xref, x->dev.pos, x->dev.vel, x->mvel, x->nref,
+                        x->dev.normal, x->dmv, x->dbody, x->nbodies);
     launched(x, "moving walls");
 }
 
@@ -489,6 +490,9 @@ static void cu_anchor_walls(vres_backend *b)
     cuda_ctx *x = ctx_of(b);
     if (x->failed || !x->xref) return;
     ok(x, cudaMemcpy(x->xref, x->dev.pos, 3 * b->n * sizeof *x->xref, cudaMemcpyDeviceToDevice), "anchor the moving walls");
+    if (x->nref)
+        ok(x, cudaMemcpy(x->nref, x->dev.normal, 3 * b->n * sizeof *x->nref, cudaMemcpyDeviceToDevice),
+           "anchor the moving walls' normals");
 }
 
 /* Wrap along the periodic axes. */
@@ -760,6 +764,8 @@ static void cu_work_list(cuda_ctx *x)
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
     if (x->dc.nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    if (x->dc.nmoving && c->mdbc && x->dc.nnormal)
+        add_work(x, &x->nref, 3 * sizeof *x->nref, VRES_WORK_CARRY, VRES_FIELD_NORMAL);
     if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
     for (int k = 0; k < 5; k++) add_work(x, &x->scratch[k], scratch_size[k], VRES_WORK_SCRATCH, -1);
     add_work(x, &x->key, sizeof *x->key, VRES_WORK_SCRATCH, -1);
