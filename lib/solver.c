@@ -365,6 +365,23 @@ int vres_backend_cuda_open(vres_backend *b, const vres_store *s, const vres_doma
 }
 #endif
 
+/* With mDBC, the particles of floating bodies carry the mass of the fluid they stand in for (the
+ * domain's rho0 dp^dim) rather than their share of the body's mass: mDBC sets their density
+ * from the fluid, so with the body's share a light body's walls pushed the fluid back with
+ * that share only and let it through (a held box of density 500 let 122 particles into itself
+ * in 0.3 s; DualSPHysics 5.4's interaction uses the body's share). The body moves with its own
+ * mass (/Bodies); the force on it is then the fluid's alone. DBC keeps DualSPHysics' masses:
+ * its wall densities rise until they hold the fluid. */
+static void mdbc_body_masses(vres_store *s, const run_cfg *c)
+{
+    if (!c->mdbc) return;
+    for (size_t k = 0; k < s->ndomains; k++) {
+        vres_domain *d = &s->dom[k];
+        for (size_t i = 0; i < d->n; i++)
+            if (vres_type_is_floating(d->type[i])) d->mass_p[i] = d->mass;
+    }
+}
+
 /* Open a backend on the device dev for every domain of set. 0, or -1 after printing why (the
  * ones opened are closed again). */
 static int open_backends(vres_store *s, run_set *set, const run_cfg *c, vres_device dev)
@@ -503,6 +520,7 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
     }
     if (o->threads > 0) omp_set_num_threads(o->threads);
     c.threads = omp_get_max_threads();
+    mdbc_body_masses(s, &c);
     if (vres_run_prepare_dir(o->rundir, o->restart, s->step, r.next_snap, o->restart_from) != 0 ||
         open_backends(s, &set, &c, dev) != 0) {
         free_set(&set, 0);

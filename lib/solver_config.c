@@ -325,11 +325,13 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
             vres_error("SlipMode=%g: must be 1 (the wall's own velocity), 2 (no-slip) or 3 (free slip)", v), bad = 1;
     }
     for (size_t k = 0; k < set->n; k++) count_normals(s, c, &set->dom[k]);
-    size_t nfloating = 0;
-    for (size_t k = 0; k < set->n; k++) nfloating += set->dom[k].nfloating;
-    if (c->mdbc && nfloating)
-        vres_error("Boundary=2 (mDBC) with floating bodies: not implemented yet; vres-run runs floating bodies with "
-                   "DBC walls (Boundary=1)"), bad = 1;
+    size_t nfloat = 0, nother = 0;
+    for (size_t k = 0; k < set->n; k++)
+        nfloat += set->dom[k].nfloating, nother += set->dom[k].nwall - set->dom[k].nfloating;
+    if (c->mdbc && nfloat && nother)
+        vres_warn("Boundary=2 (mDBC) with floating bodies: mDBC sets the walls' densities from the fluid only, so a "
+                  "body has no contact with the other walls (DBC's wall-on-wall pressure, Boundary=1, gives one): a "
+                  "body that reaches a wall goes into it, and the run stops when a wall particle leaves the domain");
     read_options(P, c, &bad);
     if (s->ndomains > 1 && c->kernel == VRES_KERNEL_CUBIC)
         vres_error("Kernel=1 (cubic spline) in a store of %zu domains: variable resolution runs with the Wendland "
