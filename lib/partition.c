@@ -30,6 +30,7 @@ typedef struct pdom {
     double overlappingh; /* overlap in the child's h */
     int tracking_mk;     /* tracked mkbound, -1 none */
     int body;            /* the tracked body's index in the store's bodies, -1 none */
+    int floating;        /* 1 when that body is floating: its path is not known, so the domain gets every wall */
     double ref[3];       /* its lattice's reference point (m) */
     double lo[3], hi[3]; /* its box as configured, cut to the simulation domain (m) */
     unsigned open;       /* VRES_FACE bits of the box's faces on the simulation domain's edge */
@@ -364,32 +365,28 @@ static void check_bodies(plan *p, int k)
  * Boxes that follow a body (<tracking>, lib/track.h)
  * ---------------------------------------------------------------------------------------- */
 
-/* What a box that follows a body needs: a body with a prescribed motion (a floating one is
- * refused by name), no face on the simulation domain's edge (a face there would leave the
- * edge), and a TimeMax (its walls are drawn along its path up to then). Boxes may nest: each
- * follows its own body (or stands still), and check_path keeps each inside its parent. */
+/* What a box that follows a body needs: a body with a prescribed motion or a floating one, no
+ * face on the simulation domain's edge (a face there would leave the edge), and for a
+ * prescribed motion a TimeMax (its walls are drawn along its path up to then; a floating body's
+ * path is not known: its box's domain gets every wall). Boxes may nest: each follows its own
+ * body (or stands still), and check_path keeps each inside its parent (vres-run, for a box
+ * that follows a floating body). */
 static void check_tracking(plan *p, int k)
 {
     pdom *d = &p->d[k];
     const vres_store *s = p->s;
     if (d->tracking_mk < 0) return;
-    d->body = vres_track_body(s, d->tracking_mk);
+    d->body = vres_track_follow(s, d->tracking_mk);
     if (d->body < 0) {
-        int floating = 0;
-        for (size_t b = 0; b < s->nbodies; b++)
-            floating |= s->body[b].kind == VRES_FLOATING && s->body[b].mkbound == d->tracking_mk;
-        if (floating)
-            perr(p, k, "<tracking mkbound=\"%d\">: mkbound %d is a floating body; boxes that follow floating bodies "
-                       "are not implemented yet (vres-run moves bodies with a prescribed <motion> only)",
-                 d->tracking_mk, d->tracking_mk);
-        else
-            perr(p, k, "<tracking mkbound=\"%d\">: no body with a <motion> has that mkbound", d->tracking_mk);
+        perr(p, k, "<tracking mkbound=\"%d\">: no body with a <motion> or a <floating> has that mkbound",
+             d->tracking_mk);
         return;
     }
+    d->floating = s->body[d->body].kind == VRES_FLOATING;
     if (d->open)
         perr(p, k, "it follows mkbound %d but reaches the simulation domain's edge: a tracking box must lie inside "
                    "the domain (its faces there would move off it)", d->tracking_mk);
-    else if (!(vres_params_get(&s->params, "TimeMax", 0) > 0))
+    else if (!d->floating && !(vres_params_get(&s->params, "TimeMax", 0) > 0))
         perr(p, k, "it follows mkbound %d but the store has no TimeMax: its walls are drawn along its path up to "
                    "TimeMax", d->tracking_mk);
 }
@@ -456,6 +453,11 @@ static int make_sweep(plan *p)
     for (int k = 1; k < p->n; k++) {
         pdom *d = &p->d[k];
         if (d->body < 0) continue;
+        if (d->floating) { /* from where the body is, for as long as the run goes */
+            vres_track_float_start(&d->reg, &s->body[d->body]);
+            d->reg.track_until = INFINITY;
+            continue;
+        }
         vres_track_at(&d->reg, &s->body[d->body], 0);
         d->reg.track_until = p->sw.tmax;
     }
@@ -550,15 +552,23 @@ static int off_paths(const plan *p, const double (*lo)[3], const double (*hi)[3]
  * sweep: each tracking region where the sample has it, each moving wall where its body is, the
  * kernel support grown by the samples' spacing (vres_region_keeps_wall at every sample). A
  * wall that does not move and lies off every tracking box's path is decided at the first
- * sample alone. */
+ * sample alone. A box that follows a floating body may go anywhere: its domain keeps every
+ * wall, and its inner box takes none from its parent. */
 static void swept_walls(const plan *p, int k, const vres_domain *src, double support, uint8_t *keep)
 {
+    if (p->d[k].floating) {
+        for (size_t q = 0; q < src->n; q++) keep[q] = (uint8_t)vres_ptype_is_wall(src->type[q]);
+        return;
+    }
     vres_region *reg = vres_xmalloc(sizeof *reg * (size_t)p->n);
     double (*lo)[3] = vres_xcalloc((size_t)p->n, sizeof *lo), (*hi)[3] = vres_xcalloc((size_t)p->n, sizeof *hi);
     for (int j = 0; j < p->n; j++) {
         reg[j] = p->d[j].reg;
         for (int a = 0; a < 3; a++) lo[j][a] = INFINITY, hi[j][a] = -INFINITY;
-        for (size_t i = 0; p->d[j].body >= 0 && i < p->sw.n; i++) {
+        if (p->d[j].floating) /* anywhere: no wall is off its path, none inside its inner box */
+            for (int a = 0; a < 3; a++)
+                lo[j][a] = -INFINITY, hi[j][a] = INFINITY, reg[j].inner_lo[a] = INFINITY, reg[j].inner_hi[a] = -INFINITY;
+        for (size_t i = 0; p->d[j].body >= 0 && !p->d[j].floating && i < p->sw.n; i++) {
             double wl[3], wh[3];
             box_at(p, j, i, p->d[j].reg.buff_lo, p->d[j].reg.buff_hi, wl, wh);
             for (int a = 0; a < 3; a++) lo[j][a] = fmin(lo[j][a], wl[a]), hi[j][a] = fmax(hi[j][a], wh[a]);
@@ -639,6 +649,8 @@ static vres_store *draw_child(plan *p, int k)
     memset(&clip, 0, sizeof clip);
     double (*hlo)[3] = vres_xcalloc((size_t)p->n, sizeof *hlo), (*hhi)[3] = vres_xcalloc((size_t)p->n, sizeof *hhi);
     for (int a = 0; a < 3; a++) clip.lo[a] = d->reg.buff_lo[a] - g, clip.hi[a] = d->reg.buff_hi[a] + g;
+    for (int a = 0; d->floating && a < 3; a++) /* it may go anywhere: the whole domain's walls */
+        clip.lo[a] = fmin(clip.lo[a], p->dmin[a] - g), clip.hi[a] = fmax(clip.hi[a], p->dmax[a] + g);
     for (size_t i = 0; d->body >= 0 && i < p->sw.n; i++) {
         double lo[3], hi[3];
         box_at(p, k, i, d->reg.buff_lo, d->reg.buff_hi, lo, hi);

@@ -227,6 +227,7 @@ static void anchor_walls(const vres_store *s, run_set *set, run_motion *m, doubl
     if (!s->nbodies) return;
     for (size_t k = 0; k < set->n; k++) set->b[k].anchor_walls(&set->b[k]);
     vres_floats_anchor(m->fl);
+    vres_couple_anchor(set->couple);
     m->t0 = t;
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m->mv0[k]);
 }
@@ -270,6 +271,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     run_motion m = {t, vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv),
                     vres_floats_open(s, c->g)};
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m.mv0[k]);
+    vres_couple_follow(set->couple, m.mv);
     if (check_start(s, set, c, &m, t, step) != 0) rc = VRES_RUN_FAIL;
     else if (!restarted && vres_couple_start(set, c) != 0) rc = VRES_RUN_FAIL;
     else if (!restarted) {

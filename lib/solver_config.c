@@ -154,14 +154,10 @@ static int read_domain(const vres_store *s, const run_cfg *c, size_t k, run_dom 
             !(t == VRES_BUFFER && s->ndomains > 1) && !(t == VRES_INLET && c->nzones > 0) && count[t])
             vres_error("%zu %s particles: not implemented yet (vres-run runs fluid, fixed, moving and floating walls)",
                        count[t], vres_ptype_name(t)), *bad = 1;
-    /* a box that follows a body (lib/track.h) moves with a prescribed motion only */
-    if (d->tracking_mk >= 0 && d->parent >= 0 && vres_track_body(s, d->tracking_mk) < 0) {
-        int floating = 0;
-        for (size_t b = 0; b < s->nbodies; b++)
-            floating |= s->body[b].kind == VRES_FLOATING && s->body[b].mkbound == d->tracking_mk;
-        vres_error("domain D%zu follows mkbound %d (<tracking>), %s", k, d->tracking_mk,
-                   floating ? "a floating body: boxes that follow floating bodies are not implemented yet"
-                            : "which no body with a prescribed <motion> has");
+    /* a box that follows a body (lib/track.h): one with a prescribed motion or a floating one */
+    if (d->tracking_mk >= 0 && d->parent >= 0 && vres_track_follow(s, d->tracking_mk) < 0) {
+        vres_error("domain D%zu follows mkbound %d (<tracking>), which no moving or floating body has", k,
+                   d->tracking_mk);
         *bad = 1;
     }
     return 0;

@@ -67,6 +67,10 @@ struct vres_couple {
     double cond2;         /* largest kappa2 of the second-order interpolation (kernels/interp_liu.h) */
     const vres_body **track; /* [ndom] the body each domain's box follows (the store's), NULL entries for boxes that
                                 stand still; NULL when no box moves */
+    int *track_body;      /* [ndom] with track: that body's index in the store's bodies, -1 for none */
+    vres_motion_state *anchor; /* [ndom] with track: a box that follows a floating body, its motion when the walls
+                                  were last anchored (vres_couple_anchor) */
+    const vres_motion_state *mv; /* the run's bodies' motions since that anchor (vres_couple_follow), NULL before */
     vres_inout *io;       /* the inlet/outlet zones (solver_inout.c), NULL when none */
     double t0;            /* the store's time when the coupling was opened (s) */
 };
@@ -133,10 +137,17 @@ static int seg_frame(const vres_couple *C, int k, size_t j)
 static void track_open(vres_couple *C, const vres_store *s)
 {
     for (int k = 1; k < C->ndom; k++) {
-        int b = s->dom[k].tracking_mk >= 0 ? vres_track_body(s, s->dom[k].tracking_mk) : -1;
-        if (b < 0) continue; /* vres_run_read_config refused a box that follows no moving body */
-        if (!C->track) C->track = vres_xcalloc((size_t)C->ndom, sizeof *C->track);
+        int b = s->dom[k].tracking_mk >= 0 ? vres_track_follow(s, s->dom[k].tracking_mk) : -1;
+        if (b < 0) continue; /* vres_run_read_config refused a box that follows no body */
+        if (!C->track) {
+            C->track = vres_xcalloc((size_t)C->ndom, sizeof *C->track);
+            C->track_body = vres_xmalloc((size_t)C->ndom * sizeof *C->track_body);
+            C->anchor = vres_xcalloc((size_t)C->ndom, sizeof *C->anchor);
+            for (int j = 0; j < C->ndom; j++) C->track_body[j] = -1;
+        }
         C->track[k] = &s->body[b];
+        C->track_body[k] = b;
+        C->anchor[k] = C->reg[k].mot; /* the store's: where the box was at its time */
     }
     for (int k = 0; C->track && k < C->ndom; k++) {
         couple_dom *cd = &C->d[k];
@@ -151,19 +162,65 @@ static void track_open(vres_couple *C, const vres_store *s)
 }
 
 /* The tracking boxes where their bodies are at time t (s): each one's region takes its body's
- * motion, and the segments on it their place, normal and velocity (track.h). The motion is
- * the body's since t = 0, from the time alone, so a restart finds the same places. */
+ * motion, and the segments on it their place, normal and velocity (track.h). A prescribed
+ * motion is the body's since t = 0, from the time alone; a floating body's is its motion since
+ * the walls' anchor after the box's then (C->anchor, from the store at a restart): a restart
+ * finds the same places either way. */
 static void track_move(vres_couple *C, double t)
 {
     if (!C->track) return;
-    for (int k = 1; k < C->ndom; k++)
-        if (C->track[k]) vres_track_at(&C->reg[k], C->track[k], t);
+    for (int k = 1; k < C->ndom; k++) {
+        if (!C->track[k]) continue;
+        if (C->track[k]->kind == VRES_FLOATING) {
+            if (C->mv) vres_track_float_move(&C->reg[k], &C->anchor[k], &C->mv[C->track_body[k]]);
+        } else vres_track_at(&C->reg[k], C->track[k], t);
+    }
     for (int k = 0; k < C->ndom; k++) {
         couple_dom *cd = &C->d[k];
         for (size_t j = 0; cd->pos0 && j < cd->nseg; j++)
             vres_track_point(&C->reg[seg_frame(C, k, j)], &cd->pos0[3 * j], &cd->normal0[3 * j], &cd->pos[3 * j],
                              &cd->normal[3 * j], &cd->vbox[3 * j]);
     }
+}
+
+/* 0 when every box that follows a floating body lies, with its buffer band, inside its parent's
+ * box (the root's: the simulation domain) at time t (s); else -1 after saying which left it
+ * and where. vres-partition cannot know a floating body's path, so the run checks it. */
+static int track_inside(const vres_couple *C, double t)
+{
+    for (int k = 1; C->track && k < C->ndom; k++) {
+        if (!C->track[k] || C->track[k]->kind != VRES_FLOATING) continue;
+        const vres_region *r = &C->reg[k], *q = &C->reg[r->parent];
+        for (int c = 0; c < 8; c++) {
+            const double x0[3] = {c & 1 ? r->buff_hi[0] : r->buff_lo[0], c & 2 ? r->buff_hi[1] : r->buff_lo[1],
+                                  c & 4 ? r->buff_hi[2] : r->buff_lo[2]};
+            double w[3], y[3];
+            vres_region_world(r, x0, w);
+            const double *x = vres_region_local(q, w, y);
+            for (int a = 0; a < 3; a++) {
+                if (C->dim == 2 && a == 1) continue;
+                const double tol = 1e-9 * (q->fluid_hi[a] - q->fluid_lo[a]);
+                if (x[a] >= q->fluid_lo[a] - tol && x[a] <= q->fluid_hi[a] + tol) continue;
+                vres_error("t = %.6g s: domain D%d's box, which follows floating body mkbound %d, left its parent D%d's "
+                           "box with its buffer band (a corner at %g m along %c, in the parent's frame, outside %g to "
+                           "%g m): a box that follows a floating body must stay inside its parent; enlarge the parent's "
+                           "box", t, k, C->track[k]->mkbound, r->parent, x[a], "xyz"[a], q->fluid_lo[a], q->fluid_hi[a]);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+void vres_couple_follow(vres_couple *C, const vres_motion_state *mv)
+{
+    if (C) C->mv = mv;
+}
+
+void vres_couple_anchor(vres_couple *C)
+{
+    for (int k = 1; C && C->track && k < C->ndom; k++)
+        if (C->track[k] && C->track[k]->kind == VRES_FLOATING) C->anchor[k] = C->reg[k].mot;
 }
 
 int vres_couple_flux_parse(const char *name)
@@ -248,6 +305,8 @@ void vres_couple_close(vres_couple *C)
         free(cd->pos0), free(cd->normal0);
     }
     free(C->track);
+    free(C->track_body);
+    free(C->anchor);
     vres_inout_close(C->io);
     free(C->d);
     free(C->donors);
@@ -500,6 +559,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     if (C->ndom == 1) return zones_exchange(C, set, t, dt);
     double t0 = vres_run_wall_now();
     track_move(C, t); /* the boxes that follow a body where it is at the new time */
+    if (track_inside(C, t) != 0) return -1;
     /* the crossing count reads the step's start positions: only then must they follow the sort */
     if (sort_domains(C, set, C->flux != VRES_FLUX_INTERP, 0) != 0) return -1;
     double tf = vres_run_wall_now();

@@ -67,6 +67,14 @@ vres_couple_parts vres_couple_wall_parts(const vres_couple *C);
  * donors' values. Nothing with one domain. 0, or -1 after printing why. */
 int vres_couple_start(run_set *set, const run_cfg *c);
 
+/* Boxes that follow floating bodies (track.h) take the run's bodies' motions since the walls'
+ * last anchor from mv ([nbodies], the time loop's, updated in place each step); nothing for
+ * NULL C. */
+void vres_couple_follow(vres_couple *C, const vres_motion_state *mv);
+/* The walls were anchored where they are now: so are those boxes (their motion now becomes the
+ * one mv is added to). */
+void vres_couple_anchor(vres_couple *C);
+
 /* Put the segments' accumulated masses, the ledger, the start's total mass and the next free
  * id into the store (before a snapshot is written). */
 void vres_couple_save(const vres_couple *C, vres_store *s);

@@ -18,6 +18,38 @@ int vres_track_body(const vres_store *s, int mk)
     return -1;
 }
 
+int vres_track_follow(const vres_store *s, int mk)
+{
+    for (size_t b = 0; b < s->nbodies; b++)
+        if ((s->body[b].kind == VRES_MOVING || s->body[b].kind == VRES_FLOATING) && s->body[b].mkbound == mk)
+            return (int)b;
+    return -1;
+}
+
+void vres_track_float_start(vres_region *r, const vres_body *b)
+{
+    static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    r->track = 1;
+    memcpy(r->mot.R, I, sizeof I);
+    memset(r->mot.d, 0, sizeof r->mot.d);
+    memcpy(r->mot.v, b->vel, sizeof r->mot.v);
+    memcpy(r->mot.w, b->omega, sizeof r->mot.w);
+    memcpy(r->mot.p, b->center, sizeof r->mot.p);
+}
+
+void vres_track_float_move(vres_region *r, const vres_motion_state *a, const vres_motion_state *f)
+{
+    vres_motion_state m;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++)
+            m.R[3 * i + j] = f->R[3 * i] * a->R[j] + f->R[3 * i + 1] * a->R[3 + j] + f->R[3 * i + 2] * a->R[6 + j];
+        m.d[i] = f->R[3 * i] * a->d[0] + f->R[3 * i + 1] * a->d[1] + f->R[3 * i + 2] * a->d[2] + f->d[i];
+        m.v[i] = f->v[i], m.w[i] = f->w[i], m.p[i] = f->p[i];
+    }
+    r->track = 1;
+    r->mot = m;
+}
+
 void vres_track_at(vres_region *r, const vres_body *b, double t)
 {
     r->track = 1;

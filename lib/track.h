@@ -2,10 +2,14 @@
  * <bufferbox>, DESIGN 5). A tracking box keeps its region boxes (kernels/region.h) where they
  * were at t = 0 and carries the body's rigid motion since then (vres_region.mot): regions are
  * tested in the box's frame, its interface segments and their normals move with it and have
- * its rigid velocity, which enters their mass flux. Only bodies with a prescribed motion
- * (<motion>, lib/solver_motion.c) are followed: their motion at any time is known, so the box's
- * place at t is the body's transform at t, with no error accumulated step after step, and a
- * restart finds it again from the time alone.
+ * its rigid velocity, which enters their mass flux. A body with a prescribed motion (<motion>,
+ * lib/solver_motion.c) has a known motion at any time, so the box's place at t is the body's
+ * transform at t, with no error accumulated step after step, and a restart finds it again from
+ * the time alone. A box that follows a floating body takes the body's integrated motion since
+ * the walls' last anchor (each snapshot) after its own motion then, which the snapshot keeps
+ * (/Domains/D<k> track_*), so a restart continues it bit for bit; its path is not known
+ * beforehand, so vres-partition gives its domain every wall of the simulation domain and its
+ * parent keeps all its own, and vres-run stops when the box leaves its parent.
  *
  * vres-partition draws a tracking domain's walls along the box's whole path up to TimeMax, and
  * keeps its parent's walls where the box passes (vres_sweep: the motions sampled finely enough
@@ -22,8 +26,20 @@
  * or -1. */
 int vres_track_body(const vres_store *s, int mk);
 
+/* The index in s->body of the body, moving or floating, whose mkbound is mk, or -1. */
+int vres_track_follow(const vres_store *s, int mk);
+
 /* Region r follows body b: r->track = 1 and r->mot its motion at time t (s). */
 void vres_track_at(vres_region *r, const vres_body *b, double t);
+
+/* Region r follows floating body b from where b is now (its place in the store): r->track = 1,
+ * r->mot the identity with b's rigid velocity (its centre's, its angular velocity about it). */
+void vres_track_float_start(vres_region *r, const vres_body *b);
+
+/* Region r of a box that follows a floating body, whose motion was a when the walls were last
+ * anchored, carried by f, the body's motion since then (solver_float.h's transforms: R, d
+ * since the anchor, v, w, p now): r->mot = f after a, with f's velocity. */
+void vres_track_float_move(vres_region *r, const vres_motion_state *a, const vres_motion_state *f);
 
 /* A point of r's frame at x0 with unit normal n0 (m): its world position x, normal n (rotated
  * with the box) and velocity v (m/s, the box's rigid velocity there). A box that stands still
