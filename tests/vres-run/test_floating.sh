@@ -212,11 +212,7 @@ check "its last angle ($fang rad) is 2 atan2(q_y, q_w)" near "$fang" "$(attr /Bo
 "$BIN/vres-forces" --mk 0 "$T/a" -o "$T/f0.tsv" 2>/dev/null
 check "a fixed wall has no motion columns" sh -c "grep '^# time_s' '$T/f0.tsv' | grep -qv cz_m"
 
-# refused: mDBC walls with a floating body, nothing written
-"$BIN/vres-gencase" -q --dp 0.04 --set Boundary=2 "$T/box.xml" -o "$T/mdbc.h5" || notok "gencase with mDBC"
-expect_err 1 'Boundary=2 \(mDBC\) with floating bodies: not implemented yet' "mDBC with a floating body refused" \
-    "$ASAN/vres-run" "$T/mdbc.h5" -o "$T/m"
-nothing_in "$T/m" "nothing written"
+# (mDBC walls with floating bodies: tests/vres-run/test_mdbc_floating.sh)
 for kv in "FtPause=0.1:FtPause=0.1 \(floating bodies held at the start\) is not implemented yet" \
           "RigidAlgorithm=0:RigidAlgorithm=0 \(floating bodies without SPH contact\) is not implemented yet"; do
     "$BIN/vres-gencase" -q --dp 0.04 --set "${kv%%:*}" "$T/box.xml" -o "$T/k.h5" || notok "gencase with ${kv%%:*}"
