@@ -321,14 +321,17 @@ static vres_store *plate_without_motion(const char *repl)
 
 START_TEST(refusals)
 {
-    /* a box that follows a floating body, one that reaches the domain's edge, and one whose path
-       runs into a sibling box (apart at t = 0) are refused; the store keeps its one domain */
+    /* a box that follows a floating body partitions, for as long as the run goes (its domain
+       gets every wall: tests/vres-run/test_vres_track_float.sh runs one); one that reaches the
+       domain's edge and one whose path runs into a
+       sibling box (apart at t = 0) are refused; the store keeps its one domain */
     vres_part_opts o;
     memset(&o, 0, sizeof o);
     vres_store *s = plate_without_motion("<floatings> <floating mkbound=\"1\" rhopbody=\"800\" /> </floatings>");
     ck_assert_int_eq(s->body[0].kind, VRES_FLOATING);
-    ck_assert_int_eq(vres_partition(s, &o), -1);
-    ck_assert_uint_eq(s->ndomains, 1);
+    ck_assert_int_eq(vres_partition(s, &o), 0);
+    ck_assert_uint_eq(s->ndomains, 2);
+    ck_assert(s->region[1].track && isinf(s->region[1].track_until) && s->region[1].track_until > 0);
     vres_store_free(s);
     s = gencase(PLATE, "<point x=\"0.14\" y=\"0\" z=\"0.07\" />", "<point x=\"-0.2\" y=\"0\" z=\"0.07\" />");
     s->box[0].size[0] = 0.54; /* from the domain's left edge to x = 0.49 */

@@ -81,7 +81,7 @@ a['track_rotation'] = np.eye(3).ravel()
 for n in ('track_shift', 'track_velocity', 'track_omega', 'track_center'):
     a[n] = np.zeros(3)
 a['track_until'] = 10.0"
-    refused 1 'domain D1 follows mkbound 0 \(<tracking>\), which no body with a prescribed <motion> has' \
+    refused 1 'domain D1 follows mkbound 0 \(<tracking>\), which no moving or floating body has' \
         "a box that follows no moving body" "$T/tracking0.h5"
     edit donor "a = f['Interfaces/I0'].attrs
 a['donor'] = a['receiving']"
