@@ -56,6 +56,14 @@ expect_err() {
     else ok "$name"; fi
 }
 
+# attr PATH FILE: an HDF5 attribute's numbers (any shape), one per line, at full precision, read
+# with h5dump; comp PATH FILE I: its I-th number (1-based).
+attr() {
+    h5dump -m '%.17g' -a "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /\}/ {exit}
+        on {sub(/^ *(\([0-9,]+\): *)?/, ""); n = split($0, v, /, */); for (i = 1; i <= n; i++) if (v[i] != "") print v[i]}'
+}
+comp() { attr "$1" "$2" | sed -n "$3p"; }
+
 # check NAME CONDITION...: a plain assertion, e.g. check "count" [ "$n" -eq 3 ].
 check() {
     local name=$1; shift

@@ -69,11 +69,6 @@ XML
 </case>
 XML
 } >"$T/fl_Def.xml"
-# attr PATH FILE: an attribute's numbers, one per line, at full double precision (h5dump's)
-attr() {
-    h5dump -m '%.17g' -a "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /\}/ {exit}
-        on {sub(/^ *(\([0-9,]+\): *)?/, ""); n = split($0, v, /, */); for (i = 1; i <= n; i++) if (v[i] != "") print v[i]}'
-}
 # near A B TOL: |A - B| <= TOL
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(d <= t)}'; }
 

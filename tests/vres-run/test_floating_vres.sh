@@ -9,10 +9,6 @@
 # snapshot continues bit for bit in both domains and /Bodies.
 source "$(dirname "$0")/../harness.sh"
 RUN=$BIN/vres-run
-attr() {
-    h5dump -m '%.17g' -a "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /\}/ {exit}
-        on {sub(/^ *(\([0-9,]+\): *)?/, ""); n = split($0, v, /, */); for (i = 1; i <= n; i++) if (v[i] != "") print v[i]}'
-}
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(d <= t)}'; }
 sed -e 's|<rotationDOF x="0" y="0" z="0"|<angularvelini x="0" y="1" z="0" /> <rotationDOF x="0" y="1" z="0"|' \
     -e 's|</floatings>|</floatings><vres><bufferbox><point x="0.25" y="0" z="0.15" /><size x="0.5" y="0" z="0.75" /><dpratio v="2" /></bufferbox></vres>|' \

@@ -14,12 +14,6 @@
 #   - a box that follows a floating body out of its parent's box stops the run, naming it.
 source "$(dirname "$0")/../harness.sh"
 XML=$CASES/floating_box2d/floating_box2d_Def.xml
-attr() {
-    h5dump -m '%.17g' -w 1 -a "$1" "$2" |
-        awk '/DATA \{/ {on = 1; next} on && /^ *\}/ {exit} on {sub(/^ *\([0-9]+\): */, ""); gsub(/,/, " ");
-             for (i = 1; i <= NF; i++) print $i}'
-}
-comp() { attr "$1" "$2" | sed -n "$3p"; }
 snap() { printf '%s/snap_%05d.h5' "$1" "$2"; }
 box='<bufferbox> <point x="0.3" y="0" z="0.25" /> <size x="0.4" y="0" z="0.6" /> <dpratio v="2" /> <tracking mkbound="1" /> </bufferbox>'
 sed -e "s#</geometry>#</geometry> <vres active=\"true\"> $box </vres>#" \

@@ -18,14 +18,6 @@
 source "$(dirname "$0")/../harness.sh"
 CASE=$CASES/tracking_plate2d/tracking_plate2d_Def.xml
 
-# attr PATH FILE: an HDF5 attribute's numbers, one per line, at full precision
-attr() {
-    h5dump -m '%.17g' -w 1 -a "$1" "$2" |
-        awk '/DATA \{/ {on = 1; next} on && /^ *\}/ {exit} on {sub(/^ *\([0-9]+\): */, ""); gsub(/,/, " ");
-             for (i = 1; i <= NF; i++) print $i}'
-}
-# comp PATH FILE I: component I (1-based) of an attribute
-comp() { attr "$1" "$2" | sed -n "$3p"; }
 
 expect 0 "vres-gencase | vres-partition of the case" \
     sh -c "'$BIN/vres-gencase' -q '$CASE' | '$BIN/vres-partition' -q - -o '$T/parts.h5'"
