@@ -37,8 +37,7 @@ static void rotation(const double u[3], const double p[3], double th, double R[9
     for (int i = 0; i < 3; i++) d[i] = p[i] - (R[3 * i] * p[0] + R[3 * i + 1] * p[1] + R[3 * i + 2] * p[2]);
 }
 
-/* m's transform followed by (R, d): m becomes x -> R (Rm x + dm) + d. */
-static void compose(vres_motion_state *m, const double R[9], const double d[3])
+void vres_motion_compose(vres_motion_state *m, const double R[9], const double d[3])
 {
     double R2[9], d2[3];
     for (int i = 0; i < 3; i++) {
@@ -48,6 +47,12 @@ static void compose(vres_motion_state *m, const double R[9], const double d[3])
     }
     memcpy(m->R, R2, sizeof R2);
     memcpy(m->d, d2, sizeof d2);
+}
+
+/* 1 for a segment kind that turns about an axis (axisp1 to axisp2). */
+static int is_rotation(int kind)
+{
+    return kind == VRES_MV_ROT || kind == VRES_MV_ROTACE || kind == VRES_MV_ROTSIN || kind == VRES_MV_ROTFILE;
 }
 
 /* A file motion's table of segment s at tau seconds into it (held beyond its ends): column a's
@@ -144,7 +149,7 @@ static void segment(const vres_motion_seg *s, double tau, const double vprev[3],
     default: /* VRES_MV_WAIT */
         break;
     }
-    if (s->kind == VRES_MV_ROT || s->kind == VRES_MV_ROTACE || s->kind == VRES_MV_ROTSIN || s->kind == VRES_MV_ROTFILE) {
+    if (is_rotation(s->kind)) {
         axis_of(s, u);
         rotation(u, s->axis_p1, th, R, d);
         for (int k = 0; k < 3; k++) m->w[k] = wa * u[k], m->p[k] = s->axis_p1[k];
@@ -169,7 +174,7 @@ void vres_motion_eval(const vres_body *b, double t, vres_motion_state *m)
         double dur = s->duration < 0 ? INFINITY : s->duration, R[9], d[3], vend[3], wend;
         int last = left <= dur;
         segment(s, last ? left : dur, vprev, wprev, R, d, &cur, vend, &wend);
-        compose(m, R, d);
+        vres_motion_compose(m, R, d);
         if (last) {
             if (!frozen) memcpy(m->v, cur.v, sizeof m->v), memcpy(m->w, cur.w, sizeof m->w),
                          memcpy(m->p, cur.p, sizeof m->p);
@@ -192,9 +197,7 @@ int vres_motion_check(const vres_body *b)
     for (size_t i = 0; i < b->nseg; i++) {
         const vres_motion_seg *g = &b->seg[i];
         double u[3];
-        const int rot = g->kind == VRES_MV_ROT || g->kind == VRES_MV_ROTACE || g->kind == VRES_MV_ROTSIN ||
-                        g->kind == VRES_MV_ROTFILE;
-        if (rot && !(axis_of(g, u) > 0)) {
+        if (is_rotation(g->kind) && !(axis_of(g, u) > 0)) {
             vres_error("moving body mkbound %d: motion segment %d has a rotation axis of zero length", b->mkbound, g->id);
             return -1;
         }

@@ -20,4 +20,7 @@ void vres_motion_eval(const vres_body *b, double t, vres_motion_state *m);
  * why (naming the body's mkbound). */
 int vres_motion_check(const vres_body *b);
 
+/* m's transform followed by (R, d): m becomes x -> R (Rm x + dm) + d (its velocity untouched). */
+void vres_motion_compose(vres_motion_state *m, const double R[9], const double d[3]);
+
 #endif

@@ -39,13 +39,11 @@ void vres_track_float_start(vres_region *r, const vres_body *b)
 
 void vres_track_float_move(vres_region *r, const vres_motion_state *a, const vres_motion_state *f)
 {
-    vres_motion_state m;
-    for (int i = 0; i < 3; i++) {
-        for (int j = 0; j < 3; j++)
-            m.R[3 * i + j] = f->R[3 * i] * a->R[j] + f->R[3 * i + 1] * a->R[3 + j] + f->R[3 * i + 2] * a->R[6 + j];
-        m.d[i] = f->R[3 * i] * a->d[0] + f->R[3 * i + 1] * a->d[1] + f->R[3 * i + 2] * a->d[2] + f->d[i];
-        m.v[i] = f->v[i], m.w[i] = f->w[i], m.p[i] = f->p[i];
-    }
+    vres_motion_state m = *a;
+    vres_motion_compose(&m, f->R, f->d);
+    memcpy(m.v, f->v, sizeof m.v);
+    memcpy(m.w, f->w, sizeof m.w);
+    memcpy(m.p, f->p, sizeof m.p);
     r->track = 1;
     r->mot = m;
 }
