@@ -64,6 +64,20 @@ attr() {
 }
 comp() { attr "$1" "$2" | sed -n "$3p"; }
 
+# ledger_within_bound SNAP RUNDIR LINES: a two-domain coupled run's ledger.tsv has LINES lines
+# and its largest |total mass drift| stays within vres-run's bound, one particle mass per
+# segment: (count(I0) m(D1) + count(I1) m(D0)) / the start's fluid mass, from snapshot SNAP.
+ledger_within_bound() {
+    local f=$1 bound drift
+    bound=$(awk -v a="$(attr /Interfaces/I0/count "$f")" -v ma="$(attr /Domains/D1/mass "$f")" \
+                -v b="$(attr /Interfaces/I1/count "$f")" -v mb="$(attr /Domains/D0/mass "$f")" \
+                -v m0="$(grep -v '^#' "$2/ledger.tsv" | head -1 | cut -f19)" 'BEGIN {printf "%.6g", (a * ma + b * mb) / m0}')
+    drift=$(awk -F'\t' '!/^#/ {d = $20 < 0 ? -$20 : $20; if (d > m) m = d; n++} END {printf "%.4g %d", m, n}' "$2/ledger.tsv")
+    echo "# ledger: largest |total mass drift| $drift lines; the run's bound (one particle mass per segment) $bound"
+    check "ledger: |drift| within the bound on all $3 lines" \
+        awk -v d="${drift% *}" -v n="${drift#* }" -v b="$bound" -v want="$3" 'BEGIN {exit !(n == want && d <= b && b > 0)}'
+}
+
 # check NAME CONDITION...: a plain assertion, e.g. check "count" [ "$n" -eq 3 ].
 check() {
     local name=$1; shift

@@ -75,13 +75,7 @@ done
 check "snapshots 2 and 6: D1 fluid in the moved box, D1 buffer in the moved band${bad:+ ($bad)}" [ -z "$bad" ]
 
 f=$(snap "$T/a" 6)
-bound=$(awk -v a="$(attr /Interfaces/I0/count "$f")" -v ma="$(attr /Domains/D1/mass "$f")" \
-            -v b="$(attr /Interfaces/I1/count "$f")" -v mb="$(attr /Domains/D0/mass "$f")" \
-            -v m0="$(grep -v '^#' "$T/a/ledger.tsv" | head -1 | cut -f19)" 'BEGIN {printf "%.6g", (a * ma + b * mb) / m0}')
-drift=$(awk -F'\t' '!/^#/ {d = $20 < 0 ? -$20 : $20; if (d > m) m = d; n++} END {printf "%.4g %d", m, n}' "$T/a/ledger.tsv")
-echo "# ledger: largest |total mass drift| $drift lines; the run's bound (one particle mass per segment) $bound"
-check "ledger: |drift| within the bound on all 14 lines" \
-    awk -v d="${drift% *}" -v n="${drift#* }" -v b="$bound" 'BEGIN {exit !(n == 14 && d <= b && b > 0)}'
+ledger_within_bound "$f" "$T/a" 14
 
 # restart bit for bit
 cp -r "$T/a" "$T/b"

@@ -97,13 +97,7 @@ check "D1 fluid and buffer lie where the box and band were not at t = 0 (the mov
     [ "$ahead_f" -gt 0 -a "$ahead_b" -gt 0 ]
 
 # ---- the ledger: columns 3 domain, 8 created, 12 deleted_buffer, 19 total mass, 20 drift
-bound=$(awk -v a="$(attr /Interfaces/I0/count "$f")" -v ma="$(attr /Domains/D1/mass "$f")" \
-            -v b="$(attr /Interfaces/I1/count "$f")" -v mb="$(attr /Domains/D0/mass "$f")" \
-            -v m0="$(grep -v '^#' "$T/a/ledger.tsv" | head -1 | cut -f19)" 'BEGIN {printf "%.6g", (a * ma + b * mb) / m0}')
-drift=$(awk -F'\t' '!/^#/ {d = $20 < 0 ? -$20 : $20; if (d > m) m = d; n++} END {printf "%.4g %d", m, n}' "$T/a/ledger.tsv")
-echo "# ledger: largest |total mass drift| $drift lines; the run's bound (one particle mass per segment) $bound"
-check "ledger: |drift| within the bound on all 14 lines" \
-    awk -v d="${drift% *}" -v n="${drift#* }" -v b="$bound" 'BEGIN {exit !(n == 14 && d <= b && b > 0)}'
+ledger_within_bound "$f" "$T/a" 14
 last() { grep -v '^#' "$T/a/ledger.tsv" | awk -F'\t' -v k="$1" -v c="$2" '$3 == k {v = $c} END {print v + 0}'; }
 check "both domains created particles at their moving segments, D1 deleted buffer past its trailing edge" \
     [ "$(last 0 8)" -gt 0 -a "$(last 1 8)" -gt 0 -a "$(last 1 12)" -gt 0 ]
