@@ -38,22 +38,23 @@
 #   STEPSPHASE steps each, one run each at PHASE_THREADS threads. Each run writes two snapshots
 #   (its start and its end), which is the output share: it shrinks as STEPSPHASE grows.
 # Table 6 (scaling): cost per particle-step (microseconds) against the particle count, about
-#   STEPSSCALE steps each (one run, SCALE_THREADS threads, from t = 0: the start's time step),
+#   max(STEPSSCALE, SCALE_PS / N) steps each (the same particle-steps at every size, so a small
+#   run is not all start-up; SCALE_REPEATS rounds over the sizes in turn, the median per size;
+#   SCALE_THREADS threads, from t = 0: the start's time step),
 #   of the 2D dam break (cases/dsph_dambreak2d) at the dp values SCALE2D_DPS and of the 3D
 #   one (cases/bench_dambreak3d) at SCALE3D_DPS: by default about 2e4, 1e5, 5e5 and 1e6
-#   particles in 2D, 1.5e4, 1.1e5, 3.9e5 and 1e6 in 3D. Its cost, estimated from the figures
-#   of pipelines/reports/bench.txt (2 threads: 0.5-0.6 us per particle-step in 2D, 8.8 in 3D at
-#   1e6) and not measured with this table: 1.6e6 particles x 20 steps x 0.6 us = 20 s in 2D,
-#   1.5e6 x 20 x 9 us = 4.5 min in 3D (3 of them at the largest size), plus vres-gencase's
-#   drawing of each store once (kept in OUTDIR and reused). Smaller sets: SCALE2D_DPS and
-#   SCALE3D_DPS.
+#   particles in 2D, 1.7e4, 1.1e5, 3.6e5 and 1e6 in 3D. Its cost, measured (2026-12-04, 2
+#   threads): about 1.5 min in 2D and 11 min in 3D (2e7 particle-steps at 0.35 and 2.2-2.8 us,
+#   three rounds), plus vres-gencase's drawing of each store once (kept in OUTDIR and reused).
+#   Smaller sets: SCALE2D_DPS, SCALE3D_DPS, SCALE_PS, SCALE_REPEATS.
 #
 #   bash pipelines/bench.sh [OUTDIR]      (default build/bench; the stores are kept there and
 #                                          reused, the run directories are replaced)
 # Environment: STEPS (60), REPEATS (3), STEPS3D (4), BENCH3D (1), MEM3D_GIB (1: the 3D run
 # holds about 0.3 GB), DPVRES (0.01), WARMVRES (0.5), STEPSVRES (1000), BENCH_TABLES (the
 # tables to make, of "2d 3d loop vres"; default all) and VRES_BIN (the tools' directory,
-# default bin/), STEPSPHASE (200), PHASE_THREADS (2, or 1 on one core), STEPSSCALE (20),
+# default bin/), STEPSPHASE (200), PHASE_THREADS (2, or 1 on one core), STEPSSCALE (20), SCALE_PS
+# (2e7 particle-steps), SCALE_REPEATS (3),
 # SCALE_THREADS (likewise), SCALE2D_DPS ("0.01 0.0045 0.002 0.0014"), SCALE3D_DPS ("0.02 0.01
 # 0.0065 0.0045"). BENCH_TABLES names also "phases" and "scaling". The coupled runs set
 # OMP_WAIT_POLICY=passive unless it is set: on a busy machine spinning threads only steal time.
@@ -75,6 +76,8 @@ TH2=$(($(nproc) < 2 ? 1 : 2))
 STEPSPHASE=${STEPSPHASE:-200}
 PHASE_THREADS=${PHASE_THREADS:-$TH2}
 STEPSSCALE=${STEPSSCALE:-20}
+SCALE_PS=${SCALE_PS:-2e7}
+SCALE_REPEATS=${SCALE_REPEATS:-3}
 SCALE_THREADS=${SCALE_THREADS:-$TH2}
 SCALE2D_DPS=${SCALE2D_DPS:-0.01 0.0045 0.002 0.0014}
 SCALE3D_DPS=${SCALE3D_DPS:-0.02 0.01 0.0065 0.0045}
@@ -342,20 +345,36 @@ if want phases; then
 fi
 
 if want scaling; then
-    printf '\n# cost per particle-step against size (about %s steps from t = 0, one run each, %s threads): the\n' \
-        "$STEPSSCALE" "$SCALE_THREADS"
-    printf '# 2D dam break (%s) and the 3D one (%s) at several dp\n' "$DB" "$DB3"
+    printf '\n# cost per particle-step against size (from t = 0, each size run for about max(%s, %s / N) steps,\n' \
+        "$STEPSSCALE" "$SCALE_PS"
+    printf '# %s rounds over the sizes in turn, the median per size; %s threads): the 2D dam break (%s)\n' \
+        "$SCALE_REPEATS" "$SCALE_THREADS" "$DB"
+    printf '# and the 3D one (%s) at several dp; us_per_particle_step leaves out the two snapshots\n' "$DB3"
     printf "$header"
     for spec in "2d $DB $SCALE2D_DPS" "3d $DB3 $SCALE3D_DPS"; do
         set -- $spec
         dim=$1 xml=$2
         shift 2
-        for dp in "$@"; do
-            name=scale$dim-$dp
-            gen "$name" "$xml" --dp "$dp"
-            n=$(particles "$out/$name.h5")
-            f=$(rate "$name" "$(tmax_for "$out/$name.h5" "$STEPSSCALE")" "$SCALE_THREADS" specialised 1)
-            row "dambreak$dim" "$dp" "$n" "$SCALE_THREADS" $f
+        for dp in "$@"; do gen "scale$dim-$dp" "$xml" --dp "$dp"; done
+        # rounds: every size once per round, so that the sizes share the machine's slow minutes
+        for r in $(seq "$SCALE_REPEATS"); do
+            for dp in "$@"; do
+                name=scale$dim-$dp
+                n=$(particles "$out/$name.h5")
+                steps=$(awk -v b="$SCALE_PS" -v n="$n" -v s="$STEPSSCALE" 'BEGIN {k = int(b / n); print (k > s ? k : s)}')
+                rd=$out/run-$name-t$SCALE_THREADS-r$r
+                rm -rf "$rd"
+                OMP_NUM_THREADS=$SCALE_THREADS "$BIN/vres-run" -q --threads "$SCALE_THREADS" \
+                    --tmax "$(tmax_for "$out/$name.h5" "$steps")" --tout "$(tmax_for "$out/$name.h5" "$steps")" \
+                    "$out/$name.h5" -o "$rd"
+                echo "$dp $n $(figures "$rd")" >>"$out/scale$dim.runs"
+            done
         done
+        for dp in "$@"; do
+            f=$(awk -v d="$dp" '$1 == d {print $3, $4, $5, $6}' "$out/scale$dim.runs" | sort -g -k2 |
+                awk -v m="$(((SCALE_REPEATS + 1) / 2))" 'NR == m')
+            row "dambreak$dim" "$dp" "$(particles "$out/scale$dim-$dp.h5")" "$SCALE_THREADS" $f
+        done
+        rm -f "$out/scale$dim.runs"
     done
 fi
