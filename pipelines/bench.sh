@@ -46,7 +46,8 @@
 #   particles in 2D, 1.7e4, 1.1e5, 3.6e5 and 1e6 in 3D. Its cost, measured (2026-12-04, 2
 #   threads): about 1.5 min in 2D and 11 min in 3D (2e7 particle-steps at 0.35 and 2.2-2.8 us,
 #   three rounds), plus vres-gencase's drawing of each store once (kept in OUTDIR and reused).
-#   Smaller sets: SCALE2D_DPS, SCALE3D_DPS, SCALE_PS, SCALE_REPEATS.
+#   Smaller sets: SCALE2D_DPS, SCALE3D_DPS, SCALE_PS, SCALE_REPEATS. SCALE_ALGOS ("symplectic
+#   verlet") gives a row set per time integrator (Verlet's rows named -verlet; about half the cost).
 #
 #   bash pipelines/bench.sh [OUTDIR]      (default build/bench; the stores are kept there and
 #                                          reused, the run directories are replaced)
@@ -78,6 +79,7 @@ PHASE_THREADS=${PHASE_THREADS:-$TH2}
 STEPSSCALE=${STEPSSCALE:-20}
 SCALE_PS=${SCALE_PS:-2e7}
 SCALE_REPEATS=${SCALE_REPEATS:-3}
+SCALE_ALGOS=${SCALE_ALGOS:-symplectic verlet}
 SCALE_THREADS=${SCALE_THREADS:-$TH2}
 SCALE2D_DPS=${SCALE2D_DPS:-0.01 0.0045 0.002 0.0014}
 SCALE3D_DPS=${SCALE3D_DPS:-0.02 0.01 0.0065 0.0045}
@@ -352,14 +354,20 @@ if want scaling; then
     printf '# and the 3D one (%s) at several dp; us_per_particle_step leaves out the two snapshots\n' "$DB3"
     printf "$header"
     for spec in "2d $DB $SCALE2D_DPS" "3d $DB3 $SCALE3D_DPS"; do
+      for algo in $SCALE_ALGOS; do
         set -- $spec
         dim=$1 xml=$2
         shift 2
-        for dp in "$@"; do gen "scale$dim-$dp" "$xml" --dp "$dp"; done
+        # Symplectic as the cases say; Verlet through --set (the name's suffix)
+        sfx=; [ "$algo" = verlet ] && sfx=-verlet
+        for dp in "$@"; do
+            if [ -n "$sfx" ]; then gen "scale$dim-$dp$sfx" "$xml" --dp "$dp" --set StepAlgorithm=1
+            else gen "scale$dim-$dp" "$xml" --dp "$dp"; fi
+        done
         # rounds: every size once per round, so that the sizes share the machine's slow minutes
         for r in $(seq "$SCALE_REPEATS"); do
             for dp in "$@"; do
-                name=scale$dim-$dp
+                name=scale$dim-$dp$sfx
                 n=$(particles "$out/$name.h5")
                 steps=$(awk -v b="$SCALE_PS" -v n="$n" -v s="$STEPSSCALE" 'BEGIN {k = int(b / n); print (k > s ? k : s)}')
                 rd=$out/run-$name-t$SCALE_THREADS-r$r
@@ -373,8 +381,9 @@ if want scaling; then
         for dp in "$@"; do
             f=$(awk -v d="$dp" '$1 == d {print $3, $4, $5, $6}' "$out/scale$dim.runs" | sort -g -k2 |
                 awk -v m="$(((SCALE_REPEATS + 1) / 2))" 'NR == m')
-            row "dambreak$dim" "$dp" "$(particles "$out/scale$dim-$dp.h5")" "$SCALE_THREADS" $f
+            row "dambreak$dim$sfx" "$dp" "$(particles "$out/scale$dim-$dp$sfx.h5")" "$SCALE_THREADS" $f
         done
         rm -f "$out/scale$dim.runs"
+      done
     done
 fi
