@@ -37,6 +37,12 @@ static void rotation(const double u[3], const double p[3], double th, double R[9
     for (int i = 0; i < 3; i++) d[i] = p[i] - (R[3 * i] * p[0] + R[3 * i + 1] * p[1] + R[3 * i + 2] * p[2]);
 }
 
+void vres_motion_identity(vres_motion_state *m)
+{
+    memset(m, 0, sizeof *m);
+    m->R[0] = m->R[4] = m->R[8] = 1;
+}
+
 void vres_motion_compose(vres_motion_state *m, const double R[9], const double d[3])
 {
     double R2[9], d2[3];
@@ -160,9 +166,7 @@ static void segment(const vres_motion_seg *s, double tau, const double vprev[3],
 
 void vres_motion_eval(const vres_body *b, double t, vres_motion_state *m)
 {
-    static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
-    memset(m, 0, sizeof *m);
-    memcpy(m->R, I, sizeof I);
+    vres_motion_identity(m);
     if (!(t > b->mv_start)) return;
     int frozen = b->mv_finish >= 0 && t > b->mv_finish;
     double left = (frozen ? b->mv_finish : t) - b->mv_start, vprev[3] = {0, 0, 0}, wprev = 0;

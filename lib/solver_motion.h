@@ -20,6 +20,9 @@ void vres_motion_eval(const vres_body *b, double t, vres_motion_state *m);
  * why (naming the body's mkbound). */
 int vres_motion_check(const vres_body *b);
 
+/* m the identity transform (R = I, d = 0) at rest (v, w, p zero). */
+void vres_motion_identity(vres_motion_state *m);
+
 /* m's transform followed by (R, d): m becomes x -> R (Rm x + dm) + d (its velocity untouched). */
 void vres_motion_compose(vres_motion_state *m, const double R[9], const double d[3]);
 

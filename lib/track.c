@@ -11,27 +11,31 @@
 #define SWEEP_MIN 65            /* samples tried first */
 #define SWEEP_MAX (131072 + 1)  /* most samples */
 
-int vres_track_body(const vres_store *s, int mk)
+/* The index in s->body of the body with mkbound mk that is moving, or floating too when
+ * floating is 1; -1 when there is none. */
+static int find_body(const vres_store *s, int mk, int floating)
 {
     for (size_t b = 0; b < s->nbodies; b++)
-        if (s->body[b].kind == VRES_MOVING && s->body[b].mkbound == mk) return (int)b;
-    return -1;
-}
-
-int vres_track_follow(const vres_store *s, int mk)
-{
-    for (size_t b = 0; b < s->nbodies; b++)
-        if ((s->body[b].kind == VRES_MOVING || s->body[b].kind == VRES_FLOATING) && s->body[b].mkbound == mk)
+        if ((s->body[b].kind == VRES_MOVING || (floating && s->body[b].kind == VRES_FLOATING)) &&
+            s->body[b].mkbound == mk)
             return (int)b;
     return -1;
 }
 
+int vres_track_body(const vres_store *s, int mk)
+{
+    return find_body(s, mk, 0);
+}
+
+int vres_track_follow(const vres_store *s, int mk)
+{
+    return find_body(s, mk, 1);
+}
+
 void vres_track_float_start(vres_region *r, const vres_body *b)
 {
-    static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     r->track = 1;
-    memcpy(r->mot.R, I, sizeof I);
-    memset(r->mot.d, 0, sizeof r->mot.d);
+    vres_motion_identity(&r->mot);
     memcpy(r->mot.v, b->vel, sizeof r->mot.v);
     memcpy(r->mot.w, b->omega, sizeof r->mot.w);
     memcpy(r->mot.p, b->center, sizeof r->mot.p);
@@ -95,7 +99,6 @@ static double corner_step(const double lo[3], const double hi[3], const vres_mot
 /* The samples of w (n already set) and their largest step over the reaches lo, hi. */
 static double sample(const vres_store *s, vres_sweep *w, const double (*lo)[3], const double (*hi)[3])
 {
-    static const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     const size_t nb = s->nbodies;
     w->mv = vres_xcalloc(w->n * (nb ? nb : 1), sizeof *w->mv);
     double step = 0;
@@ -104,7 +107,7 @@ static double sample(const vres_store *s, vres_sweep *w, const double (*lo)[3], 
         for (size_t b = 0; b < nb; b++) {
             vres_motion_state *m = &w->mv[i * nb + b];
             if (s->body[b].kind == VRES_MOVING) vres_motion_eval(&s->body[b], t, m);
-            else memcpy(m->R, I, sizeof I);
+            else vres_motion_identity(m);
             if (i > 0) step = fmax(step, corner_step(lo[b], hi[b], m - nb, m));
         }
     }
