@@ -89,11 +89,6 @@ check "fixed walls: 741 nodes + 858 centres" [ "$(count fixed 20)" = 1599 ]
 check "piston: 144 nodes + 80 centres" [ "$(count moving 10)" = 224 ]
 check "floating box: 125 nodes + 64 centres" [ "$(count floating 50)" = 189 ]
 check "fluid: 789 on the cubic lattice" [ "$(count fluid 0)" = 789 ]
-# attr PATH FILE: an attribute's numbers, one per line (h5dump's, full precision)
-attr() {
-    h5dump -m '%.17g' -a "$1" "$2" | awk '/DATA \{/ {on = 1; next} on && /\}/ {exit}
-        on {sub(/^ *(\([0-9,]+\): *)?/, ""); n = split($0, v, /, */); for (i = 1; i <= n; i++) if (v[i] != "") print v[i]}'
-}
 near() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(d <= t)}'; }
 check "the body's mass is its massbody" near "$(attr /Bodies/B0/mass "$T/fl.h5")" 40 1e-9
 check "shared by its 189 particles" near "$(values /Domains/D0/Mass "$T/fl.h5" | sed -n "$((1599 + 224 + 1))p")" "$(awk 'BEGIN {print 40 / 189}')" 1e-6

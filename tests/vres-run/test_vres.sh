@@ -13,11 +13,6 @@ CASE=$CASES/hydrostatic_vres2d/hydrostatic_vres2d_Def.xml
 
 "$BIN/vres-gencase" -q "$CASE" -o "$T/case.h5" || notok "gencase hydrostatic_vres2d"
 "$BIN/vres-partition" -q "$T/case.h5" -o "$T/parts.h5" || notok "partition hydrostatic_vres2d"
-# attr PATH FILE: an attribute's numbers, one per line, at full precision (h5dump)
-attr() {
-    h5dump -m '%.17g' -a "$1" "$2" | sed -n '/DATA {/,/}/p' | sed -E 's/\([0-9,]+\)://g' | tr ', ' '\n\n' |
-        grep -E '^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$'
-}
 ndom=$(h5ls "$T/parts.h5/Domains" | wc -l)
 check "the partition has two domains" [ "$ndom" -eq 2 ]
 
