@@ -75,6 +75,7 @@ typedef struct vres_couple_walls {
     vres_cells cells;    /* the receiving domain's cell list (current) */
     const double *pos;   /* [3n] its positions (m) */
     const uint8_t *type; /* [n] its types: only walls are looked at */
+    int no_walls;        /* 1 when the domain has no wall particles: the wall gate passes at once (0: look) */
 } vres_couple_walls;
 
 /* The segments of one receiving domain (arrays of nseg, in the backend's memory space). */
@@ -147,6 +148,7 @@ VRES_HD static inline int vres_couple_wall_blocks(const double p[3], const doubl
 VRES_HD static inline int vres_couple_wall_gate(const vres_couple_walls *w, const double p[3], const double n[3],
                                                 double dp)
 {
+    if (w->no_walls) return 0;
     vres_cell_range nb[27];
     const int m = vres_cells_neighbours(&w->cells, p, nb), dim = w->cells.dim;
     for (int c = 0; c < m; c++)

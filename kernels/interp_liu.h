@@ -188,6 +188,21 @@ VRES_HD static inline void vres_liu_acc_zero(vres_liu_acc *s, int n)
 typedef double vres_liu_v4 __attribute__((vector_size(32)));
 #endif
 
+/* VRES_LIU_UNROLL before a loop over the rows or columns of a matrix of constant size: GCC
+ * unrolls it whole (then every index is a constant); nothing elsewhere. */
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
+#define VRES_LIU_UNROLL _Pragma("GCC unroll 10")
+#else
+#define VRES_LIU_UNROLL
+#endif
+
+/* The axis (0 x, 1 y, 2 z) of the c-th coordinate in use in dimension DIM (2D: x, z), and the
+ * two axes of the c-th quadratic monomial d_i d_j (i <= j over the axes in use: 2D xx, xz, zz;
+ * 3D xx, xy, xz, yy, yz, zz). Constants where DIM and c are (the gather's unrolled loops). */
+#define VRES_LIU_AX(DIM, c) ((DIM) == 2 && (c) == 1 ? 2 : (c))
+#define VRES_LIU_QI(DIM, c) ((DIM) == 2 ? ((c) < 2 ? 0 : 2) : ((c) < 3 ? 0 : (c) < 5 ? 1 : 2))
+#define VRES_LIU_QJ(DIM, c) ((DIM) == 2 ? ((c) == 0 ? 0 : 2) : ((c) < 3 ? (c) : (c) == 3 ? 1 : 2))
+
 /* Width of a row of the gather's local sums: the largest system's unknowns rounded up to whole
  * vectors of four doubles. */
 #define VRES_LIU_ROW 12
@@ -286,11 +301,6 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
     const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
     const vres_wendland k = o.k;
-    /* the axes in use (2D: x, z) and, for order 2, the index pairs of the quadratic monomials */
-    const int ax[3] = {0, DIM == 2 ? 2 : 1, 2};
-    int qi[6], qj[6];
-    for (int p = 0, c = 0; p < DIM; p++)
-        for (int q = p; q < DIM; q++, c++) qi[c] = ax[p], qj[c] = ax[q];
     double A[VRES_LIU_NMAX][VRES_LIU_ROW], Rt[VRES_LIU_NMAX][4], div = s->div, d2min = s->d2min;
     int nfluid = s->nfluid;
     double cm = 0; /* X's crossing count so far (kg) */
@@ -393,15 +403,19 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             const double vg = Q.vg[j];
             e[0] = 1.0;
             tr[0] = Q.w0[j];
-            for (int i = 1; i < nl; i++) e[i] = d[ax[i - 1]] * inv_h, tr[i] = vg * e[i];
+            VRES_LIU_UNROLL
+            for (int i = 1; i < nl; i++) e[i] = d[VRES_LIU_AX(DIM, i - 1)] * inv_h, tr[i] = vg * e[i];
             if (N > nl) {
                 const double hf = -vg, hg = Q.hg[j];
-                for (int c2 = 0; nl + c2 < N; c2++) {
-                    const double dd = d[qi[c2]] * d[qj[c2]];
+                VRES_LIU_UNROLL
+                for (int c2 = 0; c2 < N - nl; c2++) {
+                    const int qi = VRES_LIU_QI(DIM, c2), qj = VRES_LIU_QJ(DIM, c2);
+                    const double dd = d[qi] * d[qj];
                     e[nl + c2] = dd * inv_h * inv_h;
-                    tr[nl + c2] = (qi[c2] == qj[c2] ? hf : 0.0) + hg * dd;
+                    tr[nl + c2] = (qi == qj ? hf : 0.0) + hg * dd;
                 }
             }
+            VRES_LIU_UNROLL
             for (int jj = N; jj < P; jj++) e[jj] = 0.0;
             S.f[nf][0] = rho[b], S.f[nf][1] = vel[3 * b], S.f[nf][2] = vel[3 * b + 1], S.f[nf][3] = vel[3 * b + 2];
             nf++;
@@ -446,14 +460,6 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, co
     vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL);
 }
 
-/* VRES_LIU_UNROLL before a loop over the rows or columns of a matrix of constant size: GCC
- * unrolls it whole (then every index is a constant); nothing elsewhere. */
-#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__)
-#define VRES_LIU_UNROLL _Pragma("GCC unroll 10")
-#else
-#define VRES_LIU_UNROLL
-#endif
-
 /* vres_liu_invert's body for n unknowns, a compile-time constant where vres_liu_invert calls it
  * (so the loops unroll). Columns of a left of the one being eliminated are never read again, and
  * of its own column only the other rows' entries (the multipliers), so only the columns right of
@@ -461,6 +467,53 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, co
 VRES_HD static inline VRES_FORCE_INLINE int vres_liu_invert_n(const int n, double a[VRES_LIU_NMAX][VRES_LIU_NMAX],
                                                               double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
+#ifdef VRES_LIU_V4
+    /* the same elimination on rows of whole vectors of four doubles (zero-padded): each row
+       update is one vector multiply and subtract per four entries, the same IEEE operations on
+       the entries the scalar form updates (those left of the pivot column, which it skips, are
+       never read again), so inv comes out the same to the bit */
+    const int V = (n + 3) / 4;
+    vres_liu_v4 A[VRES_LIU_NMAX][VRES_LIU_ROW / 4], I[VRES_LIU_NMAX][VRES_LIU_ROW / 4];
+    VRES_LIU_UNROLL
+    for (int i = 0; i < n; i++) {
+        const vres_liu_v4 z = {0, 0, 0, 0};
+        for (int v = 0; v < V; v++) A[i][v] = I[i][v] = z;
+        I[i][i / 4][i % 4] = 1.0;
+        VRES_LIU_UNROLL
+        for (int j = 0; j < n; j++) A[i][j / 4][j % 4] = a[i][j];
+    }
+    VRES_LIU_UNROLL
+    for (int c = 0; c < n; c++) {
+        const int cv = c / 4, cl = c % 4;
+        int p = c;
+        for (int r = c + 1; r < n; r++)
+            if (fabs(A[r][cv][cl]) > fabs(A[p][cv][cl])) p = r;
+        const double piv = A[p][cv][cl];
+        if (!(fabs(piv) > 0) || !isfinite(piv)) return -1;
+        if (p != c)
+            for (int v = 0; v < V; v++) {
+                vres_liu_v4 t = A[c][v];
+                A[c][v] = A[p][v], A[p][v] = t;
+                t = I[c][v];
+                I[c][v] = I[p][v], I[p][v] = t;
+            }
+        const double ip = 1.0 / piv;
+        vres_liu_v4 pa[VRES_LIU_ROW / 4], pi[VRES_LIU_ROW / 4];
+        for (int v = 0; v < V; v++) pa[v] = A[c][v] * ip, pi[v] = I[c][v] * ip, A[c][v] = pa[v], I[c][v] = pi[v];
+        VRES_LIU_UNROLL
+        for (int r = 0; r < n; r++) {
+            if (r == c || A[r][cv][cl] == 0) continue;
+            const double fr = A[r][cv][cl];
+            for (int v = 0; v < V; v++) A[r][v] -= fr * pa[v], I[r][v] -= fr * pi[v];
+        }
+    }
+    VRES_LIU_UNROLL
+    for (int i = 0; i < n; i++)
+        VRES_LIU_UNROLL
+        for (int j = 0; j < n; j++) inv[i][j] = I[i][j / 4][j % 4];
+    (void)a; /* destroyed in the contract: here only read */
+    return 0;
+#else
     for (int i = 0; i < n; i++) {
         for (int j = 0; j < n; j++) inv[i][j] = 0.0;
         inv[i][i] = 1.0;
@@ -497,6 +550,7 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_liu_invert_n(const int n, doubl
         }
     }
     return 0;
+#endif
 }
 
 /* Invert the n x n matrix a (n <= VRES_LIU_NMAX; a is destroyed) into inv by Gauss-Jordan elimination with
@@ -519,8 +573,10 @@ VRES_HD VRES_CLONES static inline int vres_liu_invert(int n, double a[VRES_LIU_N
 VRES_HD static inline VRES_FORCE_INLINE double vres_liu_norm_inf(int n, const double a[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
     double best = 0;
+    VRES_LIU_UNROLL
     for (int i = 0; i < n; i++) {
         double s = 0;
+        VRES_LIU_UNROLL
         for (int j = 0; j < n; j++) s += fabs(a[i][j]);
         best = s > best ? s : best;
     }
@@ -533,7 +589,9 @@ VRES_HD static inline VRES_FORCE_INLINE double vres_liu_block_cond_n(const vres_
                                                                      double inv[VRES_LIU_NMAX][VRES_LIU_NMAX])
 {
     double a[VRES_LIU_NMAX][VRES_LIU_NMAX];
+    VRES_LIU_UNROLL
     for (int i = 0; i < n; i++)
+        VRES_LIU_UNROLL
         for (int j = 0; j < n; j++) a[i][j] = s->a[i][j];
     const double na = vres_liu_norm_inf(n, a);
     return vres_liu_invert_n(n, a, inv) == 0 ? na * vres_liu_norm_inf(n, inv) : INFINITY;

@@ -493,7 +493,7 @@ static void cpu_couple_segments(vres_backend *b, const vres_donor *donors, const
 {
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
-    vres_couple_walls w = {x->cells, d->pos, d->type};
+    vres_couple_walls w = {x->cells, d->pos, d->type, x->dc.nwall == 0};
     vres_couple_segment_loop_cpu(nseg, donors, *S, w, dp, dt);
 }
 

@@ -339,7 +339,7 @@ static int fill(vres_inout *Z, inout_zone *zn, vres_backend *b, uint64_t *next_i
     int rc = 0;
     for (int l = 0; l < zn->layers && rc == 0; l++) {
         vres_donor D = self_donor(Z, b); /* after the last layer's sort */
-        vres_couple_walls w = {D.cells, D.pos, D.type};
+        vres_couple_walls w = {D.cells, D.pos, D.type, 0};
         for (size_t j = 0; j < ns; j++) {
             for (int a = 0; a < 3; a++) p[3 * j + a] = zn->pos[3 * j + a] + l * Z->dp * zn->z.n[a];
             mass[j] = Z->m;

@@ -130,7 +130,7 @@ START_TEST(test_segments)
     REQUIRE(vres_cells_init(&wg, 2, 2 * sqrt(2.0) * 0.01, lo, hi, NULL) == 0, "cells");
     vres_cells_build(&wg, w.pos, w.n);
     REQUIRE(vres_cells_reorder(&wg, &w) == 0, "reorder");
-    vres_couple_walls W = {wg, w.pos, w.type};
+    vres_couple_walls W = {wg, w.pos, w.type, 0};
     enum { NS = 4 };
     double pos[3 * NS] = {0.37, 0, 0.15, 0.63, 0, 0.15, 0.37, 0, 0.45, 0.37, 0, 0.005};
     double nrm[3 * NS] = {-1, 0, 0, 1, 0, 0, -1, 0, 0, -1, 0, 0};
