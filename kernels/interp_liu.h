@@ -269,6 +269,58 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU
     }
 }
 
+/* Room of a vres_liu_cache: the donor fluid and walls of one cell's 3^dim neighbourhood (about
+ * 100 in 2D, 1000 in 3D near a flat interface); a neighbourhood with more is not cached. */
+#define VRES_LIU_CACHE 1024
+
+/* A thread's copy of the donor fluid and walls around one donor cell, in slot order, for a run
+ * of points in that cell (a receiving domain's buffer particles or segments in order share
+ * their donor cell: about 17 of a box's buffer particles per parent cell at dpratio 2): the
+ * gather then reads their positions side by side instead of every slot of the neighbourhood
+ * at a stride of three. The same donors in the same order as the cells give them, so the same
+ * sums to the bit. CPU only (a GPU thread passes NULL). */
+typedef struct vres_liu_cache {
+    const vres_cells *g;            /* the donor cells it was filled from; NULL: empty */
+    int cx[3];                      /* the cell whose neighbourhood it holds */
+    int n;                          /* entries; -1: the neighbourhood has more than VRES_LIU_CACHE */
+    double x[3][VRES_LIU_CACHE];    /* position plus the cell range's periodic shift (m; y unused in 2D) */
+    size_t b[VRES_LIU_CACHE];       /* slot */
+} vres_liu_cache;
+
+/* An empty cache. */
+VRES_HD static inline void vres_liu_cache_init(vres_liu_cache *C)
+{
+    C->g = NULL;
+    C->n = 0;
+}
+
+/* C holding the donor fluid and walls of the neighbourhood of cell cx of g (positions pos, m;
+ * types type), refilled when it held another; 1, or 0 when they do not fit (then the caller
+ * reads the cells). */
+VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells *g, const int cx[3],
+                                             const double *pos, const uint8_t *type)
+{
+    if (C->g == g && C->cx[0] == cx[0] && C->cx[1] == cx[1] && C->cx[2] == cx[2]) return C->n >= 0;
+    C->g = g;
+    C->cx[0] = cx[0], C->cx[1] = cx[1], C->cx[2] = cx[2];
+    vres_cell_range nb[27];
+    const int m = vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL);
+    int n = 0;
+    for (int c = 0; c < m; c++)
+        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
+            const int t = type[b];
+            if (!vres_type_is_fluid(t) && !vres_type_is_wall(t)) continue;
+            if (n == VRES_LIU_CACHE) {
+                C->n = -1;
+                return 0;
+            }
+            for (int a = 0; a < 3; a++) C->x[a][n] = pos[3 * b + a] + nb[c].shift[a];
+            C->b[n++] = b;
+        }
+    C->n = n;
+    return 1;
+}
+
 /* vres_liu_gather's body for N unknowns in dimension DIM, both compile-time constants where
  * vres_liu_gather calls it (so the loops over the matrix unroll), the sums kept in locals (not
  * behind s, which the compiler would have to assume aliases the donors' positions). As
@@ -291,13 +343,16 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
                                              const double *pos, const float *vel, const float *rho,
                                              const double *mass, const uint8_t *type, const double x[3],
-                                             vres_cross *X, const int N, const int DIM)
+                                             vres_cross *X, vres_liu_cache *C, const int N, const int DIM)
 {
     vres_cell_range nb[27];
-    int m, cx[3];
-    /* a row's three cells side by side in memory are one range (the same slots in the same order
-       as vres_cells_neighbours gives them) */
-    m = vres_cells_locate(g, x, cx) ? vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL) : 0;
+    int m = 0, cx[3];
+    const int located = vres_cells_locate(g, x, cx);
+    /* the cached neighbourhood where C holds it (or can), else the cells: a row's three cells
+       side by side in memory are one range (the same slots in the same order as
+       vres_cells_neighbours gives them) */
+    const vres_liu_cache *K = C && located && vres_liu_cache_for(C, g, cx, pos, type) ? C : NULL;
+    if (!K && located) m = vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL);
     const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
     const vres_wendland k = o.k;
@@ -328,11 +383,24 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
     vres_liu_rows S;
     if (DIM == 2)
         for (int j = 0; j < VRES_LIU_LIST; j++) L.d[1][j] = 0.0;
-    int c = 0;
+    int c = 0, kc = 0; /* the next range, or the next cache entry */
     size_t b0 = m ? nb[0].begin : 0;
-    while (c < m) {
+    while (K ? kc < K->n : c < m) {
         int nc = 0; /* candidates in this pass */
-        for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
+        if (K) { /* 1 from the cache: the same offsets and distances, read side by side */
+            nc = K->n - kc < VRES_LIU_LIST ? K->n - kc : VRES_LIU_LIST;
+            const double *k0 = K->x[0] + kc, *k1 = K->x[1] + kc, *k2 = K->x[2] + kc;
+#pragma omp simd
+            for (int j = 0; j < nc; j++) {
+                const double d0 = k0[j] - x[0], d2 = k2[j] - x[2], d1 = DIM == 2 ? 0.0 : k1[j] - x[1];
+                L.d[0][j] = d0, L.d[2][j] = d2;
+                L.r2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
+                if (DIM == 3) L.d[1][j] = d1;
+                L.b[j] = K->b[kc + j];
+            }
+            kc += nc;
+        }
+        for (; !K && c < m; c++, b0 = c < m ? nb[c].begin : 0) {
             const double sh[3] = {nb[c].shift[0], nb[c].shift[1], nb[c].shift[2]};
             size_t e = nb[c].end;
             if (e - b0 > (size_t)(VRES_LIU_LIST - nc)) e = b0 + (size_t)(VRES_LIU_LIST - nc);
@@ -437,18 +505,19 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
  * (else NULL), the segment at x, whose reach one piece covers (X->np 1), also gets its crossing
  * count over the donors inside the support into X->m (kg): every particle that can add to it is
  * one (a step's motion stays below dp_b / 2, crossing.h), so it is vres_couple_crossing's sum, the
- * same terms in the same order. */
+ * same terms in the same order. With C (else NULL), the donors are read from that cache of the
+ * point's donor cell (filled when it holds another), the same sums. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_x(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
                                                                const double *pos, const float *vel, const float *rho,
                                                                const double *mass, const uint8_t *type,
-                                                               const double x[3], vres_cross *X)
+                                                               const double x[3], vres_cross *X, vres_liu_cache *C)
 {
     if (g->dim == 2) {
-        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 6, 2);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 3, 2);
+        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 6, 2);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 3, 2);
     } else {
-        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 10, 3);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, 4, 3);
+        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 10, 3);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 4, 3);
     }
 }
 
@@ -457,7 +526,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, co
                                            const float *vel, const float *rho, const double *mass,
                                            const uint8_t *type, const double x[3])
 {
-    vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL);
+    vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL, NULL);
 }
 
 /* vres_liu_invert's body for n unknowns, a compile-time constant where vres_liu_invert calls it
@@ -667,16 +736,18 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
 
 /* Density, velocity, method and gate quantities at x (m) from the donor domain (cells g in
  * slot order, arrays as vres_liu_gather) under the settings o; with X (else NULL), the crossing
- * count of the segment at x into X->m (vres_liu_gather_x). A point outside the donor's cell box
- * has no donors: VRES_LIU_NOSUPPORT. Compiled for AVX2 too (VRES_CLONES: the gather's row
- * updates four doubles at a time), with the same bits. */
+ * count of the segment at x into X->m (vres_liu_gather_x); with C (else NULL), through that
+ * thread's cache of the donors (vres_liu_cache). A point outside the donor's cell box has no
+ * donors: VRES_LIU_NOSUPPORT. Compiled for AVX2 too (VRES_CLONES: the gather's row updates four
+ * doubles at a time), with the same bits. */
 VRES_HD VRES_CLONES static inline vres_liu_result vres_liu_at_x(const vres_cells *g, vres_liu_opts o, const double *pos,
                                                     const float *vel, const float *rho, const double *mass,
-                                                    const uint8_t *type, const double x[3], vres_cross *X)
+                                                    const uint8_t *type, const double x[3], vres_cross *X,
+                                                    vres_liu_cache *C)
 {
     vres_liu_acc s;
     vres_liu_acc_zero(&s, vres_liu_size(g->dim, o.order));
-    vres_liu_gather_x(&s, g, o, pos, vel, rho, mass, type, x, X);
+    vres_liu_gather_x(&s, g, o, pos, vel, rho, mass, type, x, X, C);
     return vres_liu_solve(&s, g->dim, o);
 }
 
@@ -685,7 +756,7 @@ VRES_HD static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_
                                                   const float *vel, const float *rho, const double *mass,
                                                   const uint8_t *type, const double x[3])
 {
-    return vres_liu_at_x(g, o, pos, vel, rho, mass, type, x, NULL);
+    return vres_liu_at_x(g, o, pos, vel, rho, mass, type, x, NULL, NULL);
 }
 
 /* 1 where an interface point with result r may accumulate mass (DualSPHysics 5.4's rule): it has

@@ -645,6 +645,67 @@ static int same_result(const vres_liu_result *a, const vres_liu_result *b, doubl
     return a->method == b->method && a->nfluid == b->nfluid;
 }
 
+/* ---- the donor cache ---- */
+
+/* Through one thread's cache (vres_liu_cache), over runs of nearby points (hits), jumps (refills)
+   and a point outside the cells, every result equals the cells' to the bit, first and second
+   order: the cache holds the same donors in the same order. The donors mix in other types
+   (buffer, inlet, walls), which the cache leaves out and the sums must too. In 3D a cell's
+   neighbourhood holds more than VRES_LIU_CACHE of them (27 cells of about 41): the cache says
+   so and the cells are read, the same results again. */
+static void check_cache(int dim)
+{
+    set S = set_new(dim, FIELD_LINEAR);
+    const int n[3] = {16, 16, 16};
+    set_lattice(&S, n, 0.5, 0.25, 21, 1);
+    uint64_t pick = 5;
+    const int kinds[4] = {VRES_BUFFER, VRES_INLET, VRES_FIXED, VRES_MOVING};
+    const size_t nlat = S.d->n;
+    for (size_t i = 0; i < nlat; i += 3) {
+        double x[3];
+        for (int a = 0; a < 3; a++)
+            x[a] = S.d->pos[3 * i + a] + (dim == 2 && a == 1 ? 0 : quant(urand(&pick, -0.5, 0.5) * DP));
+        set_add(&S, x, kinds[(int)urand(&pick, 0, 4)], S.d->mass_p[i]);
+    }
+    set_finish(&S);
+    const vres_domain *d = S.d;
+    vres_liu_cache *C = malloc(sizeof *C);
+    ck_assert(C != NULL);
+    vres_liu_cache_init(C);
+    int hits = 0, fills = 0, full = 0;
+    uint64_t seed = 12;
+    double x[3] = {0, 0, 0};
+    for (int p = 0; p < 60; p++) {
+        if (p % 6 == 0) point_at(dim, &seed, 0.5, urand(&seed, -1.5, 8), x); /* a jump */
+        else x[0] = quant(x[0] + 0.3 * DP);                                    /* a step along x */
+        if (p == 59) x[2] = 100.0;                                             /* outside the cells */
+        for (int order = 1; order <= 2; order++) {
+            vres_liu_opts o = S.o;
+            o.order = order;
+            const vres_cells *before = C->g;
+            const int cx0[3] = {C->cx[0], C->cx[1], C->cx[2]};
+            vres_liu_result a = liu_o(&S, o, x);
+            vres_liu_result b = vres_liu_at_x(&S.g, o, d->pos, d->vel, d->rho, d->mass_p, d->type, x, NULL, C);
+            ck_assert_msg(same_result(&a, &b, 0), "%dD point %d order %d: cached result differs", dim, p, order);
+            int cx[3];
+            if (!vres_cells_locate(&S.g, x, cx)) continue;
+            const int same = before == C->g && cx0[0] == cx[0] && cx0[1] == cx[1] && cx0[2] == cx[2];
+            hits += same, fills += !same, full += C->n < 0;
+        }
+    }
+    ck_assert_msg(hits > 20 && fills > 5, "%dD: %d hits, %d fills", dim, hits, fills);
+    if (dim == 3) ck_assert_msg(full > 0, "3D: the cache never overflowed");
+    else ck_assert_msg(full == 0, "2D: the cache overflowed");
+    printf("cache %dD: %d hits, %d fills, %d overflowing, all to the bit\n", dim, hits, fills, full);
+    free(C);
+    set_free(&S);
+}
+
+START_TEST(test_cache_2d) { check_cache(2); }
+END_TEST
+START_TEST(test_cache_3d) { check_cache(3); }
+END_TEST
+
 /* vres_liu_loop_cpu gives vres_liu_at's result for every point (bulk, surface, Shepard and
    no-support heights, outside the box). Where a GPU answers, the CUDA launcher of the same
    function (lib/interp_cuda.cu) must agree to 1e-12 relative (the device may contract a*b+c
@@ -967,6 +1028,8 @@ static Suite *interp_suite(void)
     tcase_add_test(t, test_divergence_2d);
     tcase_add_test(t, test_divergence_3d);
     tcase_add_test(t, test_2d_ignores_y);
+    tcase_add_test(t, test_cache_2d);
+    tcase_add_test(t, test_cache_3d);
     tcase_add_test(t, test_loops);
     tcase_add_test(t, test_invert);
     tcase_add_test(t, test_quadratic_regular_2d);
