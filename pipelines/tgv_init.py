@@ -16,6 +16,11 @@ the velocity scale (default 1 m/s):
 and the density from p by the inverse Tait equation rho = rho0 (1 + p/B)^(1/gamma), with
 rhop0, b and gamma from /Parameters, so that density and pressure agree as vres-run expects.
 (refdata/taylor_green_2d_analytical.csv: Adami, Hu & Adams 2013; PySPH's taylor_green.)
+With --perturb SEED (an integer, 0: none, the default) each velocity component is multiplied
+by 1 + 2e-7 N(0, 1) (numpy's default_rng(SEED)), about one float32 ulp, the store's precision:
+the members of an ensemble. The vortex's decay rate at these resolutions is chaotic in the
+particles' disorder (cases/taylor_green_vres2d/README.md: such a perturbation moves the error
+at dp 0.02 m from 0.019 to 0.024), so one run's error is one sample of a spread.
 A line naming this command is put at the top of the store's history. Exit 0 on success, 1 on
 a store that is not a 2-D vres store with fluid, 2 on a usage error.
 """
@@ -36,7 +41,10 @@ def main():
     ap = argparse.ArgumentParser(prog="tgv_init.py", description=__doc__.split("\n")[0])
     ap.add_argument("store")
     ap.add_argument("--U", type=float, default=1.0, help="velocity scale (m/s)")
+    ap.add_argument("--perturb", type=int, default=0, metavar="SEED",
+                    help="multiply the velocities by 1 + 2e-7 N(0,1), seeded (0: no perturbation)")
     args = ap.parse_args()
+    rng = np.random.default_rng(args.perturb) if args.perturb else None
     with open_rw(TOOL, args.store, dim=2) as f:
         par = f["Parameters"].attrs
         rho0, B, gamma = float(par["rhop0"]), float(par["B"]), float(par["gamma"])
@@ -62,9 +70,13 @@ def main():
             x, z = pos[sel, 0], pos[sel, 2]
             kx, kz = 2 * np.pi * (x - xmin + dp0 / 2) / L, 2 * np.pi * (z - zmin + dp0 / 2) / L
             vel = d["Velocity"][:]
-            vel[sel, 0] = -U * np.cos(kx) * np.sin(kz)
+            u, w = -U * np.cos(kx) * np.sin(kz), U * np.sin(kx) * np.cos(kz)
+            if rng is not None:
+                u = u * (1 + 2e-7 * rng.standard_normal(u.shape))
+                w = w * (1 + 2e-7 * rng.standard_normal(w.shape))
+            vel[sel, 0] = u
             vel[sel, 1] = 0.0
-            vel[sel, 2] = U * np.sin(kx) * np.cos(kz)
+            vel[sel, 2] = w
             p = d["Pressure"][:]
             p[sel] = -(rho0 * U * U / 4) * (np.cos(2 * kx) + np.cos(2 * kz))
             rho = d["Density"][:]
@@ -75,7 +87,8 @@ def main():
             nset += int(sel.sum())
         note_history(f, TOOL)
     print(f"tgv_init.py: {args.store}: Taylor-Green vortex set on {nset} fluid and buffer particles "
-          f"in {len(names)} domain(s), L = {L:g} m, U = {U:g} m/s", file=sys.stderr)
+          f"in {len(names)} domain(s), L = {L:g} m, U = {U:g} m/s"
+          + (f", perturbed (seed {args.perturb})" if args.perturb else ""), file=sys.stderr)
 
 
 if __name__ == "__main__":
