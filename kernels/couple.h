@@ -268,6 +268,43 @@ VRES_HD static inline vres_liu_opts vres_couple_opts(const vres_donor *D, double
     return o;
 }
 
+/* The cache a point of a receiving domain of spacing dp (m) interpolating from donor D uses: C
+ * where the donor is the coarser (a run of the receiving domain's points in order shares its
+ * donor cell), else NULL (a finer donor's cells hold about one point each: refills would cost
+ * more than they save). */
+VRES_HD static inline vres_liu_cache *vres_couple_cache(const vres_donor *D, double dp, vres_liu_cache *C)
+{
+    return D->dp > dp ? C : NULL;
+}
+
+/* VRES_CACHED_LOOP(name, fn, params, args): as VRES_PARTICLE_LOOP (device.h), for a fn whose
+ * last argument is a vres_liu_cache: on the CPU each thread keeps one across its points, a GPU
+ * thread passes NULL. */
+#ifdef __CUDACC__
+#define VRES_CACHED_LOOP(name, fn, params, args)                                         \
+    __global__ static void name##_kernel(size_t n, VRES_UNPAREN params)                  \
+    {                                                                                    \
+        size_t i = (size_t)blockIdx.x * blockDim.x + threadIdx.x;                        \
+        if (i < n) fn(i, VRES_UNPAREN args, NULL);                                       \
+    }                                                                                    \
+    static inline void name##_cuda(size_t n, VRES_UNPAREN params)                        \
+    {                                                                                    \
+        if (n) name##_kernel<<<(unsigned)((n + 255) / 256), 256>>>(n, VRES_UNPAREN args); \
+    }
+#else
+#define VRES_CACHED_LOOP(name, fn, params, args)                                         \
+    static inline void name##_cpu(size_t n, VRES_UNPAREN params)                         \
+    {                                                                                    \
+        _Pragma("omp parallel")                                                          \
+        {                                                                                \
+            vres_liu_cache C;                                                            \
+            vres_liu_cache_init(&C);                                                     \
+            _Pragma("omp for schedule(static)")                                          \
+            for (size_t i = 0; i < n; i++) fn(i, VRES_UNPAREN args, &C);                 \
+        }                                                                                \
+    }
+#endif
+
 /* Update segment s over dt (s): interpolate the donor there, gate, accumulate (dp the receiving
  * domain's spacing, m); BALANCED also records this update's interpolated increment and crossing
  * count for the balance, CROSSING accumulates the crossing count instead. */
@@ -285,9 +322,8 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
         vres_cross_init(&X, D->pos, D->pos0, p, n, S.area[s], &S.vbox[3 * s], dt, D->dp, D->o.k.h, D->cells.period,
                         D->cells.dim);
     const int fused = cross && X.np == 1;
-    /* the cache pays where the donor is the coarser: a run of segments shares its cell */
     vres_liu_result r = vres_liu_at_x(&D->cells, vres_couple_opts(D, dp), D->pos, D->vel, D->rho, D->mass, D->type, p,
-                                      fused ? &X : NULL, D->dp > dp ? C : NULL);
+                                      fused ? &X : NULL, vres_couple_cache(D, dp, C));
     const double crossed = !cross ? 0.0 : fused ? X.m : vres_couple_cross_sum(D, &X);
     S.rho[s] = (float)r.rho;
     for (int a = 0; a < 3; a++) S.vel[3 * s + a] = (float)r.v[a];
@@ -321,31 +357,10 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
     }
 }
 
-/* vres_couple_segment_loop_cpu / _cuda (nseg, donors, S, w, dp, dt): on the CPU each thread
- * keeps a cache of the donors around the last segment's donor cell (vres_liu_cache: a face's
- * segments in order share it), a GPU thread none. */
-#ifdef __CUDACC__
-VRES_HD static inline void vres_couple_segment_nc(size_t s, const vres_donor *donors, vres_segments S,
-                                                  vres_couple_walls w, double dp, double dt)
-{
-    vres_couple_segment_one(s, donors, S, w, dp, dt, NULL);
-}
-VRES_PARTICLE_LOOP(vres_couple_segment_loop, vres_couple_segment_nc,
-                   (const vres_donor *donors, vres_segments S, vres_couple_walls w, double dp, double dt),
-                   (donors, S, w, dp, dt))
-#else
-static inline void vres_couple_segment_loop_cpu(size_t nseg, const vres_donor *donors, vres_segments S,
-                                                vres_couple_walls w, double dp, double dt)
-{
-#pragma omp parallel
-    {
-        vres_liu_cache C;
-        vres_liu_cache_init(&C);
-#pragma omp for schedule(static)
-        for (size_t s = 0; s < nseg; s++) vres_couple_segment_one(s, donors, S, w, dp, dt, &C);
-    }
-}
-#endif
+/* vres_couple_segment_loop_cpu / _cuda (nseg, donors, S, w, dp, dt), a cache per CPU thread. */
+VRES_CACHED_LOOP(vres_couple_segment_loop, vres_couple_segment_one,
+                 (const vres_donor *donors, vres_segments S, vres_couple_walls w, double dp, double dt),
+                 (donors, S, w, dp, dt))
 
 /* Buffer particle i of domain k takes the density and velocity of the domain whose fluid feeds
  * its band (its region, region.h), interpolated at its position; with too little support there
@@ -358,9 +373,8 @@ VRES_HD static inline void vres_couple_buffer_one(size_t i, const vres_region *r
     int j;
     if (vres_region_classify(reg, nreg, k, &pos[3 * i], dim, &j) != VRES_REGION_BUFFER || j < 0) return;
     const vres_donor *D = &donors[j];
-    /* the cache pays where the donor is the coarser: a run of buffer particles shares its cell */
     vres_liu_result r = vres_liu_at_x(&D->cells, vres_couple_opts(D, donors[k].dp), D->pos, D->vel, D->rho, D->mass,
-                                      D->type, &pos[3 * i], NULL, D->dp > donors[k].dp ? C : NULL);
+                                      D->type, &pos[3 * i], NULL, vres_couple_cache(D, donors[k].dp, C));
     if (r.method == VRES_LIU_NOSUPPORT) {
         event[i] = VRES_EV_NOSUPPORT;
         return;
@@ -369,35 +383,12 @@ VRES_HD static inline void vres_couple_buffer_one(size_t i, const vres_region *r
     for (int a = 0; a < 3; a++) vel[3 * i + a] = (float)r.v[a];
 }
 
-/* vres_couple_buffer_loop_cpu / _cuda (n, reg, nreg, k, dim, donors, pos, type, vel, rho, event):
- * on the CPU each thread keeps a cache of the donors around the last buffer particle's donor
- * cell (vres_liu_cache: the particles are in cell order, so a run of them shares it), a GPU
- * thread none. */
-#ifdef __CUDACC__
-VRES_HD static inline void vres_couple_buffer_nc(size_t i, const vres_region *reg, int nreg, int k, int dim,
-                                                 const vres_donor *donors, const double *pos, const uint8_t *type,
-                                                 float *vel, float *rho, uint8_t *event)
-{
-    vres_couple_buffer_one(i, reg, nreg, k, dim, donors, pos, type, vel, rho, event, NULL);
-}
-VRES_PARTICLE_LOOP(vres_couple_buffer_loop, vres_couple_buffer_nc,
-                   (const vres_region *reg, int nreg, int k, int dim, const vres_donor *donors, const double *pos,
-                    const uint8_t *type, float *vel, float *rho, uint8_t *event),
-                   (reg, nreg, k, dim, donors, pos, type, vel, rho, event))
-#else
-static inline void vres_couple_buffer_loop_cpu(size_t n, const vres_region *reg, int nreg, int k, int dim,
-                                               const vres_donor *donors, const double *pos, const uint8_t *type,
-                                               float *vel, float *rho, uint8_t *event)
-{
-#pragma omp parallel
-    {
-        vres_liu_cache C;
-        vres_liu_cache_init(&C);
-#pragma omp for schedule(static)
-        for (size_t i = 0; i < n; i++) vres_couple_buffer_one(i, reg, nreg, k, dim, donors, pos, type, vel, rho, event, &C);
-    }
-}
-#endif
+/* vres_couple_buffer_loop_cpu / _cuda (n, reg, nreg, k, dim, donors, pos, type, vel, rho, event), a
+ * cache per CPU thread (the particles are in cell order, so a run of them shares it). */
+VRES_CACHED_LOOP(vres_couple_buffer_loop, vres_couple_buffer_one,
+                 (const vres_region *reg, int nreg, int k, int dim, const vres_donor *donors, const double *pos,
+                  const uint8_t *type, float *vel, float *rho, uint8_t *event),
+                 (reg, nreg, k, dim, donors, pos, type, vel, rho, event))
 
 
 /* Buffer particle i of domain k keeps of its shifting sums (shiftv[4i..4i+2], grad C,

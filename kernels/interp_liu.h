@@ -580,7 +580,6 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_liu_invert_n(const int n, doubl
     for (int i = 0; i < n; i++)
         VRES_LIU_UNROLL
         for (int j = 0; j < n; j++) inv[i][j] = I[i][j / 4][j % 4];
-    (void)a; /* destroyed in the contract: here only read */
     return 0;
 #else
     for (int i = 0; i < n; i++) {
