@@ -43,6 +43,7 @@
 #include "interp_liu.h"
 #include "ptype.h"
 #include "region.h"
+#include "surface.h"
 
 #define VRES_COUPLE_WALL_COS 0.70710678118654752 /* cos 45 deg: the wall gate's cone behind a segment */
 #define VRES_COUPLE_DIV_GATE 0.5 /* the flux gate: D above this times dim (vres_couple_flux_gate) */
@@ -68,6 +69,8 @@ typedef struct vres_donor {
     const uint8_t *type; /* [n] particle types (ptype.h) */
     vres_liu_opts o;     /* its kernel (h), rho0 and the interpolation thresholds */
     double dp;           /* its particle spacing (m) */
+    vres_surface sf;     /* the run's gravity and EOS, for a free surface's excess in the buffers (surface.h);
+                            sf.g 0: the buffers take the interpolated density as it is */
 } vres_donor;
 
 /* The receiving domain's walls, for the wall gate. */
@@ -362,9 +365,64 @@ VRES_CACHED_LOOP(vres_couple_segment_loop, vres_couple_segment_one,
                  (const vres_donor *donors, vres_segments S, vres_couple_walls w, double dp, double dt),
                  (donors, S, w, dp, dt))
 
+/* sigma (surface.h) at x (m) over donor D's fluid, buffer and walls with a Wendland kernel of
+ * smoothing length hs (m), which may exceed D's (the cells around x out to 2 hs): hs sum_b V_b
+ * (-F(r)) (x_b - x) . down, V_b = m_b / rho_b (m_b / rho0 for a wall). Buffer particles count
+ * here, unlike in the interpolation: the donor's fluid region ends at its band, which is no
+ * surface. */
+VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double x[3], double hs)
+{
+    const vres_cells *g = &D->cells;
+    int c[3];
+    if (!vres_cells_locate(g, x, c)) return 0.0;
+    const vres_wendland k = vres_wendland_make(g->dim, hs);
+    const double *down = D->sf.down, r2max = 4.0 * hs * hs;
+    int R[3];
+    for (int a = 0; a < 3; a++) R[a] = g->dim == 2 && a == 1 ? 0 : (int)ceil(2.0 * hs / g->cell[a]);
+    double s = 0;
+    for (int oz = -R[2]; oz <= R[2]; oz++)
+        for (int oy = -R[1]; oy <= R[1]; oy++)
+            for (int ox = -R[0]; ox <= R[0]; ox++) {
+                int q[3] = {c[0] + ox, c[1] + oy, c[2] + oz}, ok = 1;
+                double sh[3] = {0, 0, 0};
+                for (int a = 0; a < 3 && ok; a++)
+                    ok = (q[a] >= 0 && q[a] < g->nc[a]) || (g->periodic[a] && q[a] >= -g->nc[a] && q[a] < 2 * g->nc[a]
+                                                            && vres_cells_wrap_axis(g, a, &q[a], &sh[a]));
+                if (!ok) continue;
+                const size_t cell = ((size_t)q[2] * (size_t)g->nc[1] + (size_t)q[1]) * (size_t)g->nc[0] + (size_t)q[0];
+                for (size_t b = g->begin[cell]; b < g->begin[cell + 1]; b++) {
+                    const int t = D->type[b], wall = vres_type_is_wall(t);
+                    if (!wall && !vres_type_acts_fluid(t)) continue;
+                    double d[3], r2 = 0;
+                    for (int a = 0; a < 3; a++) {
+                        d[a] = g->dim == 2 && a == 1 ? 0.0 : D->pos[3 * b + a] + sh[a] - x[a];
+                        r2 += d[a] * d[a];
+                    }
+                    if (r2 >= r2max) continue;
+                    const double V = D->mass[b] / (wall ? D->o.rho0 : (double)D->rho[b]);
+                    s += V * -vres_wendland_f(k, sqrt(r2)) * (d[0] * down[0] + d[1] * down[1] + d[2] * down[2]);
+                }
+            }
+    return s * hs;
+}
+
+/* The density (kg/m^3) buffer particle at x (m) of a domain with smoothing length h (m) takes for
+ * rho interpolated from donor D: rho, with the pressure excess of a free surface above it turned
+ * from D's lattice's into its own (surface.h; the depth from sigma over D with the larger of the
+ * two smoothing lengths, which reaches deeper). */
+VRES_HD static inline double vres_couple_surface(const vres_donor *D, const double x[3], double h, double rho)
+{
+    if (D->sf.g <= 0) return rho;
+    const double hd = D->o.k.h, hs = h > hd ? h : hd;
+    const double q = vres_surface_depth(vres_couple_sigma(D, x, hs), D->cells.dim);
+    return vres_surface_match(&D->sf, rho, q < 0 ? -1.0 : q * hs, h, hd);
+}
+
 /* Buffer particle i of domain k takes the density and velocity of the domain whose fluid feeds
- * its band (its region, region.h), interpolated at its position; with too little support there
- * it is marked for deletion (event[i] = VRES_EV_NOSUPPORT). Other particles are left alone. */
+ * its band (its region, region.h), interpolated at its position, the density with a free
+ * surface's excess turned into its own lattice's (vres_couple_surface); with too little support
+ * there it is marked for deletion (event[i] = VRES_EV_NOSUPPORT). Other particles are left
+ * alone. */
 VRES_HD static inline void vres_couple_buffer_one(size_t i, const vres_region *reg, int nreg, int k, int dim,
                                                   const vres_donor *donors, const double *pos, const uint8_t *type,
                                                   float *vel, float *rho, uint8_t *event, vres_liu_cache *C)
@@ -379,7 +437,7 @@ VRES_HD static inline void vres_couple_buffer_one(size_t i, const vres_region *r
         event[i] = VRES_EV_NOSUPPORT;
         return;
     }
-    rho[i] = (float)r.rho;
+    rho[i] = (float)vres_couple_surface(D, &pos[3 * i], donors[k].o.k.h, r.rho);
     for (int a = 0; a < 3; a++) vel[3 * i + a] = (float)r.v[a];
 }
 

@@ -545,7 +545,8 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 1);
         return VRES_RUN_FAIL;
     }
-    set.couple = vres_couple_open(s, &c, o->restart, o->vres_order, o->vres_cond2, o->vres_flux);
+    set.couple = vres_couple_open(s, &c, o->restart, o->vres_order, o->vres_cond2, o->vres_flux,
+                                  o->vres_excess);
     if (nzones > 0 && !set.couple) { /* vres_couple_open said why */
         free_set(&set, 1);
         return VRES_RUN_FAIL;

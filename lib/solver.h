@@ -32,6 +32,8 @@ typedef struct vres_run_opts {
     int profile;            /* --profile: print the time per phase of the step, write RUNDIR/phases.tsv */
     double vres_cond2;      /* --vres-cond2: largest kappa2 of the second-order interpolation (>= 1); 0: the
                                restarted run's, else VRES_LIU_COND2_MAX */
+    int vres_excess;        /* --vres-excess: 1 on, 0 off (buffers take their own lattice's free-surface pressure
+                               excess, kernels/surface.h); -1: the restarted run's, else on */
 } vres_run_opts;
 
 /* Check that the store is one this solver runs (refusing anything it would have to ignore)

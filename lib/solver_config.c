@@ -24,7 +24,7 @@ static const char *const known_params[] = {
     "DtAllParticles", "TimeMax", "TimeOut", "RhopOutMin", "RhopOutMax", "MinFluidStop", "periodic",
     "periodic_xinc", "periodic_yinc", "periodic_zinc", "domain_min", "domain_max", "lattice", "modules", "run_t0",
     "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded", "buffsizeh", "overlappingh", "run_mass0",
-    "run_next_id", "run_vres_order", "run_vres_cond2", "run_vres_flux", NULL};
+    "run_next_id", "run_vres_order", "run_vres_cond2", "run_vres_flux", "run_vres_excess", NULL};
 
 /* 1 when name is in known_params. */
 static int is_known(const char *name)

@@ -65,6 +65,8 @@ struct vres_couple {
     int flux;             /* how segments measure mass: VRES_FLUX_* (kernels/couple.h), --vres-flux */
     int order;            /* order of the buffer interpolation: 1, 2 or VRES_COUPLE_ORDER_AUTO (2 from coarser donors) */
     double cond2;         /* largest kappa2 of the second-order interpolation (kernels/interp_liu.h) */
+    int excess;           /* 1: buffers take their own lattice's free-surface pressure excess (--vres-excess) */
+    vres_surface sf;      /* what that needs (kernels/surface.h): gravity (g 0 with excess off) and the EOS */
     const vres_body **track; /* [ndom] the body each domain's box follows (the store's), NULL entries for boxes that
                                 stand still; NULL when no box moves */
     int *track_body;      /* [ndom] with track: that body's index in the store's bodies, -1 for none */
@@ -234,7 +236,7 @@ int vres_couple_flux_parse(const char *name)
 }
 
 vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order, double cond2,
-                              const char *flux)
+                              const char *flux, int excess)
 {
     if (s->ndomains < 2 && vres_inout_count(s) <= 0) return NULL;
     vres_couple *C = vres_xcalloc(1, sizeof *C);
@@ -271,6 +273,11 @@ vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restart
     C->cond2 = cond2 > 0 ? cond2
                : restarted ? vres_params_get(&s->params, "run_vres_cond2", VRES_LIU_COND2_MAX)
                            : VRES_LIU_COND2_MAX;
+    C->excess = excess >= 0 ? excess : restarted ? (int)vres_params_get(&s->params, "run_vres_excess", 1) : 1;
+    const double g = sqrt(c->g[0] * c->g[0] + c->g[1] * c->g[1] + c->g[2] * c->g[2]);
+    C->sf.g = C->excess ? g : 0.0;
+    for (int a = 0; a < 3; a++) C->sf.down[a] = g > 0 ? c->g[a] / g : 0.0;
+    C->sf.rho0 = c->rho0, C->sf.B = c->B, C->sf.gamma = c->gamma;
     for (int k = 0; k < C->ndom; k++) {
         couple_dom *cd = &C->d[k];
         const vres_domain *d = &s->dom[k];
@@ -323,6 +330,7 @@ static void refresh_donors(vres_couple *C, run_set *set)
         C->donors[k].o.order = C->order;
         C->donors[k].o.cond2_max = C->cond2;
         C->donors[k].dp = set->dom[k].dp;
+        C->donors[k].sf = C->sf;
     }
 }
 
@@ -656,6 +664,7 @@ void vres_couple_save(const vres_couple *C, vres_store *s)
     vres_params_set1(&s->params, "run_vres_order", C->order, "", "run");
     vres_params_set1(&s->params, "run_vres_cond2", C->cond2, "", "run");
     vres_params_set1(&s->params, "run_vres_flux", C->flux, "", "run");
+    vres_params_set1(&s->params, "run_vres_excess", C->excess, "", "run");
     s->next_id = C->next_id;
 }
 

@@ -40,9 +40,12 @@ extern const char vres_couple_ledger_header[];
  * cond2: the largest kappa2 of the second order (--vres-cond2), or 0 (the restarted run's, else
  * VRES_LIU_COND2_MAX);
  * flux: a name vres_couple_flux_parse knows (--vres-flux) or NULL (VRES_FLUX in the environment,
- * else the restarted run's, else VRES_FLUX_DEFAULT). NULL also after an error, said on stderr. */
+ * else the restarted run's, else VRES_FLUX_DEFAULT);
+ * excess: 1 or 0 (--vres-excess on/off: buffers under a free surface take their own lattice's
+ * pressure excess, kernels/surface.h; with gravity only), -1 (the restarted run's, else on).
+ * NULL also after an error, said on stderr. */
 vres_couple *vres_couple_open(const vres_store *s, const run_cfg *c, int restarted, const char *order,
-                              double cond2, const char *flux);
+                              double cond2, const char *flux, int excess);
 /* The VRES_FLUX_* code (kernels/couple.h) of a segment-flux name, "capped", "interp", "balanced"
  * or "crossing" (vres-run --vres-flux); -1 for any other. */
 int vres_couple_flux_parse(const char *name);

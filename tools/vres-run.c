@@ -15,10 +15,10 @@
 static const char synopsis[] =
     "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
     "         [--vres-order 1|2|auto] [--vres-cond2 K] [--vres-flux capped|interp|balanced|crossing]\n"
-    "         [--profile] STORE -o RUNDIR\n"
+    "         [--vres-excess on|off] [--profile] STORE -o RUNDIR\n"
     "vres-run [-v|-q] [--tmax T] [--tout DT] [--device auto|cpu|cuda] [--threads N] [--checkpoint S]\n"
     "         [--vres-order 1|2|auto] [--vres-cond2 K] [--vres-flux capped|interp|balanced|crossing]\n"
-    "         [--profile] --restart SNAP [-o RUNDIR]\n";
+    "         [--vres-excess on|off] [--profile] --restart SNAP [-o RUNDIR]\n";
 
 static const vres_opt options[] = {
     {"tmax", 0, VRES_ARG_POSDOUBLE, 0},       /* end time (s) instead of the store's TimeMax */
@@ -30,6 +30,7 @@ static const vres_opt options[] = {
     {"vres-order", 0, VRES_ARG_STR, 0},       /* order of the coupling's buffer interpolation: 1, 2 or auto */
     {"vres-cond2", 0, VRES_ARG_DOUBLE, 0},    /* largest condition number kappa2 of the second-order interpolation */
     {"vres-flux", 0, VRES_ARG_STR, 0},        /* how interface segments measure mass: capped, interp, balanced, crossing */
+    {"vres-excess", 0, VRES_ARG_STR, 0},      /* on/off: buffers take their own lattice's free-surface pressure excess */
     {"profile", 0, VRES_ARG_NONE, 0},         /* print the time per phase of the step, write RUNDIR/phases.tsv */
     {NULL, 0, VRES_ARG_NONE, 0},
 };
@@ -56,6 +57,8 @@ static void check_usage(const vres_cli *cli)
         vres_error("--vres-order %s: must be 1, 2 or auto", ord), bad = 1;
     if (vres_cli_get(cli, "vres-cond2") && !(vres_cli_double(cli, "vres-cond2", 0) >= 1))
         vres_error("--vres-cond2 %s: must be at least 1 (a condition number)", vres_cli_get(cli, "vres-cond2")), bad = 1;
+    const char *xs = vres_cli_get(cli, "vres-excess");
+    if (xs && strcmp(xs, "on") && strcmp(xs, "off")) vres_error("--vres-excess %s: must be on or off", xs), bad = 1;
     const char *fx = vres_cli_get(cli, "vres-flux");
     if (fx && vres_couple_flux_parse(fx) < 0)
         vres_error("--vres-flux %s: must be capped, interp, balanced or crossing", fx), bad = 1;
@@ -82,7 +85,8 @@ int main(int argc, char **argv)
                        cli.output ? cli.output : dirname(snapdir), /* a restart continues in the snapshot's directory */
                        cli.cmdline, restart != NULL, vres_cli_double(&cli, "checkpoint", 300),
                        vres_cli_get(&cli, "vres-order"), vres_cli_get(&cli, "vres-flux"), restart,
-                       vres_cli_flag(&cli, "profile"), vres_cli_double(&cli, "vres-cond2", 0)};
+                       vres_cli_flag(&cli, "profile"), vres_cli_double(&cli, "vres-cond2", 0),
+                       vres_cli_get(&cli, "vres-excess") ? !strcmp(vres_cli_get(&cli, "vres-excess"), "on") : -1};
     vres_store *s = vres_store_read(restart ? restart : cli.pos[0]);
     int rc = s ? vres_solver_run(s, &o) : VRES_RUN_FAIL;
     vres_store_free(s);

@@ -1,0 +1,220 @@
+/* test_surface.c - unit tests of kernels/surface.h and of the coupling's use of it
+ * (kernels/couple.h's vres_couple_sigma and vres_couple_surface): the free surface's pressure
+ * excess that a buffer particle turns from its donor's lattice into its own.
+ *
+ * The sigma table is recomputed here by the midpoint rule (400 points a side, against the
+ * table's 2000: its error, about 1e-4, sets the tolerance 1e-3). The depth a donor lattice's sums
+ * give is compared with the true depth of a row on a regular cell-centred lattice (dp 0.02 m,
+ * h = sqrt(dim) dp, the surface dp/2 above the top row): the lattice's sums differ from the
+ * continuum's by up to 0.023 at q = 1.06 (0.086 against 0.109), which moves the depth by 0.07 h,
+ * so the tolerance is 0.1 h. */
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../kernels/couple.h"
+#include "cells.h"
+#include "check_run.h"
+#include "store.h"
+
+#define DP 0.02     /* donor spacing (m) */
+#define RHO0 1000.0 /* reference density (kg/m^3) */
+#define ZTOP 0.3    /* donor free surface (m): the top row at ZTOP - DP/2 */
+#define G 9.81      /* gravity (m/s^2) */
+#define CS0 20.0    /* speed of sound (m/s): B = CS0^2 RHO0 / 7 */
+
+#define REQUIRE(c, msg) ck_assert_msg((c), "set-up failed: %s", (msg))
+
+/* A donor lattice: the domain, its cells and the coupling's view. */
+typedef struct lat {
+    vres_domain d; /* particles */
+    vres_cells g;  /* cell list */
+    vres_donor v;  /* what the coupling sees */
+} lat;
+
+/* A dim-D cell-centred lattice of 25 (x, y) columns and 15 rows below ZTOP, three wall rows under
+ * it when walls is 1; the rows from buffer_from down to the top row (counted from the bottom) are
+ * buffer particles (buffer_from 15: none). Density rho0, at rest; gravity -z. */
+static lat lat_new(int dim, int walls, int buffer_from)
+{
+    lat L;
+    memset(&L, 0, sizeof L);
+    L.d.parent = -1;
+    L.d.dp = DP;
+    L.d.h = sqrt((double)dim) * DP;
+    const int ny = dim == 2 ? 1 : 25;
+    for (int i = 0; i < 25; i++)
+        for (int j = 0; j < ny; j++)
+            for (int k = walls ? -3 : 0; k < 15; k++) {
+                const double x[3] = {(i + 0.5) * DP, dim == 2 ? 0 : (j + 0.5) * DP, (k + 0.5) * DP};
+                const int t = k < 0 ? VRES_FIXED : k >= buffer_from ? VRES_BUFFER : VRES_FLUID;
+                const size_t n = vres_domain_push(&L.d, x, t, 0);
+                L.d.rho[n] = (float)RHO0;
+                L.d.mass_p[n] = RHO0 * pow(DP, dim);
+            }
+    const double lo[3] = {-0.1, dim == 2 ? 0 : -0.1, -0.1}, hi[3] = {0.6, dim == 2 ? 0 : 0.6, 0.5};
+    REQUIRE(vres_cells_init(&L.g, dim, 2 * L.d.h, lo, hi, NULL) == 0, "cells init");
+    vres_cells_build(&L.g, L.d.pos, L.d.n);
+    REQUIRE(vres_cells_reorder(&L.g, &L.d) == 0, "cells reorder");
+    L.v.cells = L.g;
+    L.v.pos = L.d.pos, L.v.vel = L.d.vel, L.v.rho = L.d.rho, L.v.mass = L.d.mass_p, L.v.type = L.d.type;
+    L.v.o = vres_liu_defaults(vres_wendland_make(dim, L.d.h), RHO0);
+    L.v.dp = DP;
+    const vres_surface sf = {G, {0, 0, -1}, RHO0, CS0 * CS0 * RHO0 / 7, 7};
+    L.v.sf = sf;
+    return L;
+}
+
+static void lat_free(lat *L)
+{
+    vres_cells_free(&L->g);
+    vres_domain_free(&L->d);
+}
+
+/* The continuum's sigma(q) by the midpoint rule on m points a side (h = 1). */
+static double sigma_quad(double q0, int dim, int m)
+{
+    const vres_wendland k = vres_wendland_make(dim, 1.0);
+    const double dz = (2.0 - q0) / m;
+    double s = 0;
+    for (int i = 0; i < m; i++) {
+        const double z = q0 + (i + 0.5) * dz, R = sqrt(fmax(4.0 - z * z, 0.0));
+        for (int j = 0; j < m; j++) {
+            if (dim == 2) {
+                const double x = -R + (j + 0.5) * 2 * R / m;
+                s += -vres_wendland_f(k, sqrt(x * x + z * z)) * z * (2 * R / m) * dz;
+            } else {
+                const double r = (j + 0.5) * R / m;
+                s += -vres_wendland_f(k, sqrt(r * r + z * z)) * z * 2 * 3.14159265358979323846 * r * (R / m) * dz;
+            }
+        }
+    }
+    return s;
+}
+
+/* The table against the quadrature it states, 2D and 3D. */
+START_TEST(test_sigma_table)
+{
+    for (int dim = 2; dim <= 3; dim++)
+        for (int i = 0; i < VRES_SURFACE_NQ; i++) {
+            const double q = 0.1 * i, t = vres_surface_sigma_table(dim, i), s = sigma_quad(q, dim, 400);
+            ck_assert_msg(fabs(t - s) < 1e-3, "%dD sigma(%.1f): table %.5f, quadrature %.5f", dim, q, t, s);
+        }
+}
+END_TEST
+
+/* The depth inverts the table, reads above the surface as 0 and too little sigma as none. */
+START_TEST(test_depth)
+{
+    for (int dim = 2; dim <= 3; dim++) {
+        for (int i = 0; i < VRES_SURFACE_NQ; i++) {
+            const double s = vres_surface_sigma_table(dim, i);
+            if (s < VRES_SURFACE_SIGMA_MIN) continue;
+            ck_assert_double_eq_tol(vres_surface_depth(s, dim), 0.1 * i, 1e-12);
+        }
+        ck_assert_double_eq(vres_surface_depth(1.0, dim), 0.0);
+        ck_assert_double_eq(vres_surface_depth(0.5 * VRES_SURFACE_SIGMA_MIN, dim), -1.0);
+        ck_assert_double_eq(vres_surface_depth(-0.3, dim), -1.0);
+        ck_assert_double_eq(vres_surface_depth(NAN, dim), -1.0);
+        double prev = -1;
+        for (double s = 0.74; s >= VRES_SURFACE_SIGMA_MIN; s -= 0.001) { /* deeper as sigma falls */
+            const double q = vres_surface_depth(s, dim);
+            ck_assert_msg(q >= prev, "%dD depth not monotone at sigma %.3f", dim, s);
+            prev = q;
+        }
+    }
+}
+END_TEST
+
+/* A lattice's own sums give its rows' depths; the bulk, a wall below, a lattice's side and a band
+ * of buffer particles above read as no surface. */
+static void check_probe(int dim)
+{
+    lat L = lat_new(dim, 1, 15);
+    const double h = L.d.h, c = 12.5 * DP; /* the middle column */
+    for (int r = 0; r < 3; r++) {         /* the top rows, and a point half a spacing above the top */
+        const double d = (r + 0.5) * DP, x[3] = {c, dim == 2 ? 0 : c, ZTOP - d};
+        const double q = vres_surface_depth(vres_couple_sigma(&L.v, x, h), dim);
+        if (r < 2) ck_assert_msg(fabs(q - d / h) < 0.1, "%dD row %d: depth %.3f h, true %.3f h", dim, r, q, d / h);
+        else ck_assert_msg(q < 0 || fabs(q - d / h) < 0.1, "%dD row %d: depth %.3f h, true %.3f h", dim, r, q, d / h);
+    }
+    /* with twice the smoothing length the probe reaches twice as deep */
+    const double x2[3] = {c, dim == 2 ? 0 : c, ZTOP - 1.5 * DP};
+    const double q2 = vres_surface_depth(vres_couple_sigma(&L.v, x2, 2 * h), dim);
+    ck_assert_msg(fabs(q2 - 1.5 * DP / (2 * h)) < 0.1, "%dD wide probe: depth %.3f, true %.3f", dim, q2,
+                  1.5 * DP / (2 * h));
+    const double bulk[3] = {c, dim == 2 ? 0 : c, 0.15}, floor[3] = {c, dim == 2 ? 0 : c, 0.01},
+                 side[3] = {0.01, dim == 2 ? 0 : c, 0.15};
+    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, bulk, h), dim), -1.0);
+    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, floor, h), dim), -1.0);
+    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, side, h), dim), -1.0);
+    lat_free(&L);
+    /* no walls under the floor: missing mass below reads as no surface too (sigma < 0) */
+    L = lat_new(dim, 0, 15);
+    ck_assert(vres_couple_sigma(&L.v, floor, h) < -VRES_SURFACE_SIGMA_MIN);
+    lat_free(&L);
+    /* the top three rows buffer: counted (the donor's region ends there, not its water), so the
+       fourth row, 3.5 dp = 2.5 h (2D) below the surface, has none within reach (its fluid's top
+       row, were the buffer left out) */
+    L = lat_new(dim, 1, 12);
+    const double x[3] = {c, dim == 2 ? 0 : c, ZTOP - 3.5 * DP};
+    const double q = vres_surface_depth(vres_couple_sigma(&L.v, x, h), dim);
+    ck_assert_msg(q < 0, "%dD under three buffer rows: depth %.3f h, none expected", dim, q);
+    lat_free(&L);
+}
+
+START_TEST(test_probe_2d)
+{
+    check_probe(2);
+}
+END_TEST
+
+START_TEST(test_probe_3d)
+{
+    check_probe(3);
+}
+END_TEST
+
+/* What a buffer particle takes: the pressure turned by rho0 g (h_recv phi(d/h_recv) - h_don
+ * phi(d/h_don)); nothing without gravity, in the bulk, or between lattices of one h. */
+START_TEST(test_match)
+{
+    lat L = lat_new(2, 1, 15);
+    const double h = L.d.h, c = 12.5 * DP, rho = 1000.2;
+    const double top[3] = {c, 0, ZTOP - 0.25 * DP}, bulk[3] = {c, 0, 0.15};
+    const vres_surface *sf = &L.v.sf;
+    /* a receiving lattice of half the spacing, half a fine spacing below the surface */
+    const double got = vres_couple_surface(&L.v, top, h / 2, rho);
+    const double q = vres_surface_depth(vres_couple_sigma(&L.v, top, h), 2), d = q * h;
+    ck_assert(q >= 0 && q < 0.3);
+    const double dp = RHO0 * G * (h / 2 * vres_surface_phi(d / (h / 2)) - h * vres_surface_phi(d / h));
+    ck_assert(dp < -5 && dp > -20); /* the coarse top row's excess is about 22 Pa, the fine's 11 Pa */
+    const double want = vres_tait_density(vres_tait_pressure(rho, RHO0, sf->B, 7) + dp, RHO0, sf->B, 7);
+    ck_assert_double_eq_tol(got, want, 1e-9);
+    ck_assert(got < rho);
+    ck_assert_double_eq(vres_couple_surface(&L.v, bulk, h / 2, rho), rho);
+    ck_assert_double_eq_tol(vres_couple_surface(&L.v, top, h, rho), rho, 1e-9);
+    L.v.sf.g = 0;
+    ck_assert_double_eq(vres_couple_surface(&L.v, top, h / 2, rho), rho);
+    /* the table: the top row's value above it, 0 from the fourth row down */
+    ck_assert_double_eq(vres_surface_phi(0.0), VRES_SURFACE_PHI0);
+    ck_assert_double_eq(vres_surface_phi(3.0), 0.0);
+    ck_assert_double_eq_tol(vres_surface_phi(1.06066), VRES_SURFACE_PHI1, 1e-12);
+    lat_free(&L);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("surface");
+    TCase *tc = tcase_create("kernels");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, test_sigma_table);
+    tcase_add_test(tc, test_depth);
+    tcase_add_test(tc, test_probe_2d);
+    tcase_add_test(tc, test_probe_3d);
+    tcase_add_test(tc, test_match);
+    suite_add_tcase(s, tc);
+    return vres_check_run(s);
+}
