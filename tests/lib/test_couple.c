@@ -16,6 +16,7 @@
 #include "../kernels/couple.h"
 #include "cells.h"
 #include "check_run.h"
+#include "donor_set.h"
 #include "store.h"
 
 #define DP 0.02      /* donor spacing (m) */
@@ -24,13 +25,6 @@
 
 /* Fail the test when a set-up step fails (not a result being checked). */
 #define REQUIRE(c, msg) ck_assert_msg((c), "set-up failed: %s", (msg))
-
-/* The donor: a domain with its cell list and the vres_donor view of it. */
-typedef struct donor_set {
-    vres_domain d;   /* particles */
-    vres_cells g;    /* cell list */
-    vres_donor v;    /* what the coupling sees */
-} donor_set;
 
 /* A 2D lattice of donor fluid (density rho, velocity (u0 + a x, 0, w0)) over [0,1] x [0,ZTOP],
  * with a row of wall particles below z = 0 when walls is 1. */
@@ -50,21 +44,9 @@ static donor_set donor_new(double rho, double u0, double a, double w0, int walls
             S.d.vel[3 * n + 2] = (float)w0;
             S.d.mass_p[n] = RHO0 * DP * DP;
         }
-    double lo[3] = {-0.1, 0, -0.1}, hi[3] = {1.1, 0, 0.5};
-    REQUIRE(vres_cells_init(&S.g, 2, 2 * S.d.h, lo, hi, NULL) == 0, "cells init");
-    vres_cells_build(&S.g, S.d.pos, S.d.n);
-    REQUIRE(vres_cells_reorder(&S.g, &S.d) == 0, "cells reorder");
-    S.v.cells = S.g;
-    S.v.pos = S.d.pos, S.v.vel = S.d.vel, S.v.rho = S.d.rho, S.v.mass = S.d.mass_p, S.v.type = S.d.type;
-    S.v.o = vres_liu_defaults(vres_wendland_make(2, S.d.h), RHO0);
-    S.v.dp = DP;
+    const double lo[3] = {-0.1, 0, -0.1}, hi[3] = {1.1, 0, 0.5};
+    donor_set_finish(&S, 2, RHO0, lo, hi);
     return S;
-}
-
-static void donor_free(donor_set *S)
-{
-    vres_cells_free(&S->g);
-    vres_domain_free(&S->d);
 }
 
 /* Regions of a root (whole space) and one child [0.4,0.6] x [0.1,0.2] with buffer 2 h_child,

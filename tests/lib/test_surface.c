@@ -16,6 +16,7 @@
 #include "../kernels/couple.h"
 #include "cells.h"
 #include "check_run.h"
+#include "donor_set.h"
 #include "store.h"
 
 #define DP 0.02     /* donor spacing (m) */
@@ -24,21 +25,12 @@
 #define G 9.81      /* gravity (m/s^2) */
 #define CS0 20.0    /* speed of sound (m/s): B = CS0^2 RHO0 / 7 */
 
-#define REQUIRE(c, msg) ck_assert_msg((c), "set-up failed: %s", (msg))
-
-/* A donor lattice: the domain, its cells and the coupling's view. */
-typedef struct lat {
-    vres_domain d; /* particles */
-    vres_cells g;  /* cell list */
-    vres_donor v;  /* what the coupling sees */
-} lat;
-
 /* A dim-D cell-centred lattice of 25 (x, y) columns and 15 rows below ZTOP, three wall rows under
  * it when walls is 1; the rows from buffer_from down to the top row (counted from the bottom) are
  * buffer particles (buffer_from 15: none). Density rho0, at rest; gravity -z. */
-static lat lat_new(int dim, int walls, int buffer_from)
+static donor_set lat_new(int dim, int walls, int buffer_from)
 {
-    lat L;
+    donor_set L;
     memset(&L, 0, sizeof L);
     L.d.parent = -1;
     L.d.dp = DP;
@@ -54,22 +46,10 @@ static lat lat_new(int dim, int walls, int buffer_from)
                 L.d.mass_p[n] = RHO0 * pow(DP, dim);
             }
     const double lo[3] = {-0.1, dim == 2 ? 0 : -0.1, -0.1}, hi[3] = {0.6, dim == 2 ? 0 : 0.6, 0.5};
-    REQUIRE(vres_cells_init(&L.g, dim, 2 * L.d.h, lo, hi, NULL) == 0, "cells init");
-    vres_cells_build(&L.g, L.d.pos, L.d.n);
-    REQUIRE(vres_cells_reorder(&L.g, &L.d) == 0, "cells reorder");
-    L.v.cells = L.g;
-    L.v.pos = L.d.pos, L.v.vel = L.d.vel, L.v.rho = L.d.rho, L.v.mass = L.d.mass_p, L.v.type = L.d.type;
-    L.v.o = vres_liu_defaults(vres_wendland_make(dim, L.d.h), RHO0);
-    L.v.dp = DP;
+    donor_set_finish(&L, dim, RHO0, lo, hi);
     const vres_surface sf = {G, {0, 0, -1}, RHO0, CS0 * CS0 * RHO0 / 7, 7};
     L.v.sf = sf;
     return L;
-}
-
-static void lat_free(lat *L)
-{
-    vres_cells_free(&L->g);
-    vres_domain_free(&L->d);
 }
 
 /* The continuum's sigma(q) by the midpoint rule on m points a side (h = 1). */
@@ -131,7 +111,7 @@ END_TEST
  * of buffer particles above read as no surface. */
 static void check_probe(int dim)
 {
-    lat L = lat_new(dim, 1, 15);
+    donor_set L = lat_new(dim, 1, 15);
     const double h = L.d.h, c = 12.5 * DP; /* the middle column */
     for (int r = 0; r < 3; r++) {         /* the top rows, and a point half a spacing above the top */
         const double d = (r + 0.5) * DP, x[3] = {c, dim == 2 ? 0 : c, ZTOP - d};
@@ -149,11 +129,11 @@ static void check_probe(int dim)
     ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, bulk, h), dim), -1.0);
     ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, floor, h), dim), -1.0);
     ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, side, h), dim), -1.0);
-    lat_free(&L);
+    donor_free(&L);
     /* no walls under the floor: missing mass below reads as no surface too (sigma < 0) */
     L = lat_new(dim, 0, 15);
     ck_assert(vres_couple_sigma(&L.v, floor, h) < -VRES_SURFACE_SIGMA_MIN);
-    lat_free(&L);
+    donor_free(&L);
     /* the top three rows buffer: counted (the donor's region ends there, not its water), so the
        fourth row, 3.5 dp = 2.5 h (2D) below the surface, has none within reach (its fluid's top
        row, were the buffer left out) */
@@ -161,7 +141,7 @@ static void check_probe(int dim)
     const double x[3] = {c, dim == 2 ? 0 : c, ZTOP - 3.5 * DP};
     const double q = vres_surface_depth(vres_couple_sigma(&L.v, x, h), dim);
     ck_assert_msg(q < 0, "%dD under three buffer rows: depth %.3f h, none expected", dim, q);
-    lat_free(&L);
+    donor_free(&L);
 }
 
 START_TEST(test_probe_2d)
@@ -180,7 +160,7 @@ END_TEST
  * phi(d/h_don)); nothing without gravity, in the bulk, or between lattices of one h. */
 START_TEST(test_match)
 {
-    lat L = lat_new(2, 1, 15);
+    donor_set L = lat_new(2, 1, 15);
     const double h = L.d.h, c = 12.5 * DP, rho = 1000.2;
     const double top[3] = {c, 0, ZTOP - 0.25 * DP}, bulk[3] = {c, 0, 0.15};
     const vres_surface *sf = &L.v.sf;
@@ -201,7 +181,7 @@ START_TEST(test_match)
     ck_assert_double_eq(vres_surface_phi(0.0), VRES_SURFACE_PHI0);
     ck_assert_double_eq(vres_surface_phi(3.0), 0.0);
     ck_assert_double_eq_tol(vres_surface_phi(1.06066), VRES_SURFACE_PHI1, 1e-12);
-    lat_free(&L);
+    donor_free(&L);
 }
 END_TEST
 
