@@ -385,9 +385,8 @@ VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double
             for (int ox = -R[0]; ox <= R[0]; ox++) {
                 int q[3] = {c[0] + ox, c[1] + oy, c[2] + oz}, ok = 1;
                 double sh[3] = {0, 0, 0};
-                for (int a = 0; a < 3 && ok; a++)
-                    ok = (q[a] >= 0 && q[a] < g->nc[a]) || (g->periodic[a] && q[a] >= -g->nc[a] && q[a] < 2 * g->nc[a]
-                                                            && vres_cells_wrap_axis(g, a, &q[a], &sh[a]));
+                for (int a = 0; a < 3 && ok; a++) /* wrap_axis reaches one period: a block wider than the grid stops there */
+                    ok = q[a] >= -g->nc[a] && q[a] < 2 * g->nc[a] && vres_cells_wrap_axis(g, a, &q[a], &sh[a]);
                 if (!ok) continue;
                 const size_t cell = ((size_t)q[2] * (size_t)g->nc[1] + (size_t)q[1]) * (size_t)g->nc[0] + (size_t)q[0];
                 for (size_t b = g->begin[cell]; b < g->begin[cell + 1]; b++) {

@@ -22,7 +22,7 @@
  * support is full and grows towards a surface above the point; a wall or a region's edge below
  * the point makes it negative, which is read as no surface. For a flat surface at depth d over a
  * continuum, sigma = hs integral over the empty half-space of (-F) (y . -g_hat) dy, a function of
- * d/hs only: vres_surface_sigma2 / 3 tabulate it, vres_surface_depth inverts it. */
+ * d/hs only: vres_surface_sigma_table tabulates it, vres_surface_depth inverts it. */
 #ifndef VRES_KERNELS_SURFACE_H
 #define VRES_KERNELS_SURFACE_H
 
