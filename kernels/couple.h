@@ -365,21 +365,21 @@ VRES_CACHED_LOOP(vres_couple_segment_loop, vres_couple_segment_one,
                  (const vres_donor *donors, vres_segments S, vres_couple_walls w, double dp, double dt),
                  (donors, S, w, dp, dt))
 
-/* sigma (surface.h) at x (m) over donor D's fluid, buffer and walls with a Wendland kernel of
- * smoothing length hs (m), which may exceed D's (the cells around x out to 2 hs): hs sum_b V_b
- * (-F(r)) (x_b - x) . down, V_b = m_b / rho_b (m_b / rho0 for a wall). Buffer particles count
- * here, unlike in the interpolation: the donor's fluid region ends at its band, which is no
- * surface. */
-VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double x[3], double hs)
+/* The vector sum behind sigma (surface.h) at x (m) over donor D's fluid, buffer and walls with a
+ * Wendland kernel of smoothing length hs (m), which may exceed D's (the cells around x out to
+ * 2 hs): S = sum_b V_b (-F(r)) (x_b - x) (1/m), V_b = m_b / rho_b (m_b / rho0
+ * for a wall); sigma along a unit vector n is hs S . n. Buffer particles count here, unlike in
+ * the interpolation: the donor's fluid region ends at its band, which is no surface. */
+VRES_HD static inline void vres_couple_sigma_vec(const vres_donor *D, const double x[3], double hs, double S[3])
 {
     const vres_cells *g = &D->cells;
     int c[3];
-    if (!vres_cells_locate(g, x, c)) return 0.0;
+    S[0] = S[1] = S[2] = 0.0;
+    if (!vres_cells_locate(g, x, c)) return;
     const vres_wendland k = vres_wendland_make(g->dim, hs);
-    const double *down = D->sf.down, r2max = 4.0 * hs * hs;
+    const double r2max = 4.0 * hs * hs;
     int R[3];
     for (int a = 0; a < 3; a++) R[a] = g->dim == 2 && a == 1 ? 0 : (int)ceil(2.0 * hs / g->cell[a]);
-    double s = 0;
     for (int oz = -R[2]; oz <= R[2]; oz++)
         for (int oy = -R[1]; oy <= R[1]; oy++)
             for (int ox = -R[0]; ox <= R[0]; ox++) {
@@ -399,22 +399,49 @@ VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double
                     }
                     if (r2 >= r2max) continue;
                     const double V = D->mass[b] / (wall ? D->o.rho0 : (double)D->rho[b]);
-                    s += V * -vres_wendland_f(k, sqrt(r2)) * (d[0] * down[0] + d[1] * down[1] + d[2] * down[2]);
+                    const double w = V * -vres_wendland_f(k, sqrt(r2));
+                    for (int a = 0; a < 3; a++) S[a] += w * d[a];
                 }
             }
-    return s * hs;
+}
+
+/* sigma (surface.h) at x (m) over donor D with smoothing length hs (m) along gravity (D->sf.down):
+ * hs S . down (vres_couple_sigma_vec). */
+VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double x[3], double hs)
+{
+    double S[3];
+    vres_couple_sigma_vec(D, x, hs, S);
+    const double *down = D->sf.down;
+    return hs * (S[0] * down[0] + S[1] * down[1] + S[2] * down[2]);
 }
 
 /* The density (kg/m^3) buffer particle at x (m) of a domain with smoothing length h (m) takes for
- * rho interpolated from donor D: rho, with the pressure excess of a free surface above it turned
- * from D's lattice's into its own (surface.h; the depth from sigma over D with the larger of the
- * two smoothing lengths, which reaches deeper). */
-VRES_HD static inline double vres_couple_surface(const vres_donor *D, const double x[3], double h, double rho)
+ * the interpolation r from donor D: r->rho, with the pressure excess of a free surface above it
+ * turned from D's lattice's into its own (surface.h; the depth from sigma over D with the larger
+ * of the two smoothing lengths, which reaches deeper). The excess scales with the pressure
+ * gradient and the depth is taken along it: G = |grad p| = c^2 |grad rho| from the corrected
+ * interpolation's gradient rows (c^2 = dp/drho of Tait's equation at r->rho), the unit vector
+ * grad p / G pointing into the water; a point without pressure gradient (a free jet) gets
+ * nothing. Where the interpolation gave Shepard's value (no gradient) gravity's rho0 g and its
+ * direction stand in. */
+VRES_HD static inline double vres_couple_surface(const vres_donor *D, const double x[3], double h,
+                                                 const vres_liu_result *r)
 {
-    if (D->sf.g <= 0) return rho;
+    if (D->sf.g <= 0) return r->rho;
     const double hd = D->o.k.h, hs = h > hd ? h : hd;
-    const double q = vres_surface_depth(vres_couple_sigma(D, x, hs), D->cells.dim);
-    return vres_surface_match(&D->sf, rho, q < 0 ? -1.0 : q * hs, h, hd);
+    vres_surface sf = D->sf;
+    if (r->grad[0] == r->grad[0]) { /* not NaN: the corrected value's gradient */
+        const double gr = sqrt(r->grad[0] * r->grad[0] + r->grad[1] * r->grad[1] + r->grad[2] * r->grad[2]);
+        if (!(gr > 0)) return r->rho;
+        const double c2 = sf.B * sf.gamma / sf.rho0 * pow(r->rho / sf.rho0, sf.gamma - 1.0);
+        for (int a = 0; a < 3; a++) sf.down[a] = r->grad[a] / gr;
+        sf.g = c2 * gr / sf.rho0; /* G / rho0 (m/s^2): vres_surface_match's rho0 g is G */
+    }
+    double S[3];
+    vres_couple_sigma_vec(D, x, hs, S);
+    const double sig = hs * (S[0] * sf.down[0] + S[1] * sf.down[1] + S[2] * sf.down[2]);
+    const double q = vres_surface_depth(sig, D->cells.dim);
+    return vres_surface_match(&sf, r->rho, q < 0 ? -1.0 : q * hs, h, hd);
 }
 
 /* Buffer particle i of domain k takes the density and velocity of the domain whose fluid feeds
@@ -436,7 +463,7 @@ VRES_HD static inline void vres_couple_buffer_one(size_t i, const vres_region *r
         event[i] = VRES_EV_NOSUPPORT;
         return;
     }
-    rho[i] = (float)vres_couple_surface(D, &pos[3 * i], donors[k].o.k.h, r.rho);
+    rho[i] = (float)vres_couple_surface(D, &pos[3 * i], donors[k].o.k.h, &r);
     for (int a = 0; a < 3; a++) vel[3 * i + a] = (float)r.v[a];
 }
 

@@ -132,6 +132,8 @@ typedef struct vres_liu_result {
     double div;      /* D = -sum_b V_b F r^2 over donor fluid and walls (dimensionless) */
     double dmin;     /* distance to the nearest donor fluid particle within 2h (m); INFINITY when none */
     double cond2;    /* kappa2 of the second-order system (dimensionless); NaN when order 1 was asked */
+    double grad[3];  /* gradient of the density (kg/m^4; 2D: y 0) from the corrected solution's gradient rows,
+                        exact for linear fields (quadratic with order 2); NaN unless CORRECTED */
     int method;      /* VRES_LIU_CORRECTED, VRES_LIU_SHEPARD or VRES_LIU_NOSUPPORT */
     int order;       /* order of the correction used: 2 or 1 with CORRECTED, 0 otherwise */
     int nfluid;      /* donor fluid particles inside the support */
@@ -690,6 +692,20 @@ VRES_HD static inline void vres_liu_first_row(const vres_liu_acc *s, int n,
     }
 }
 
+/* grad = the density's gradient (kg/m^4) from rows 1..dim of inv (n x n) against the density's right
+ * sides: those rows solve for h g (the basis' columns are d/h), so each is divided by h (m); the
+ * axes in use are x, z in 2D (y 0). */
+VRES_HD static inline void vres_liu_grad_rho(const vres_liu_acc *s, int n, int dim, double h,
+                                             const double inv[VRES_LIU_NMAX][VRES_LIU_NMAX], double grad[3])
+{
+    grad[0] = grad[1] = grad[2] = 0.0;
+    for (int i = 1; i <= dim; i++) {
+        double v = 0;
+        for (int j = 0; j < n; j++) v += inv[i][j] * s->r[0][j];
+        grad[dim == 2 && i == 2 ? 2 : i - 1] = v / h;
+    }
+}
+
 /* The result for the sums s of dimension dim under the settings o: the too-little-support
  * flag, the condition numbers, the corrected value (second order where asked and kappa2 <=
  * cond2_max, else first order where kappa <= cond_max) or Shepard's, D and the nearest distance. */
@@ -703,6 +719,7 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
     res.dmin = sqrt(s->d2min);
     res.nfluid = s->nfluid;
     res.cond = res.cond2 = NAN;
+    res.grad[0] = res.grad[1] = res.grad[2] = NAN;
     res.order = 0;
     if (!(shep > o.shepard_min)) { /* NaN too */
         res.method = VRES_LIU_NOSUPPORT;
@@ -715,6 +732,7 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
         if (o.cond_max > 0 && res.cond2 <= o.cond2_max) {
             res.method = VRES_LIU_CORRECTED, res.order = 2;
             vres_liu_first_row(s, s->n, inv, f);
+            vres_liu_grad_rho(s, s->n, dim, o.k.h, inv, res.grad);
             res.rho = f[0];
             res.v[0] = f[1], res.v[1] = f[2], res.v[2] = f[3];
             return res;
@@ -724,6 +742,7 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
     if (o.cond_max > 0 && res.cond <= o.cond_max) {
         res.method = VRES_LIU_CORRECTED, res.order = 1;
         vres_liu_first_row(s, n1, inv, f);
+        vres_liu_grad_rho(s, n1, dim, o.k.h, inv, res.grad);
     } else {
         res.method = VRES_LIU_SHEPARD;
         for (int q = 0; q < 4; q++) f[q] = s->r[q][0] / shep;

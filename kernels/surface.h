@@ -16,9 +16,18 @@
  * 6.5 mm/s after 1.3 s, the box's water standing 0.4 mm higher). The buffer particle's pressure
  * therefore takes rho0 g (h_recv phi(d/h_recv) - h_donor phi(d/h_donor)) on top of the donor's.
  *
+ * What the top rows balance is the pressure gradient, rho0 g at rest and rho |g - a| in a flow that
+ * accelerates: a surge decelerating against a wall has several times g, a free jet or a falling
+ * sheet none. So the buffers scale phi by G = |grad p| instead of rho0 g and measure the depth d
+ * along grad p (the surface's inward normal) instead of gravity, both from the interpolation's
+ * own corrected gradient (couple.h's vres_couple_surface); at rest the two agree. Measured
+ * (2026-12-04, `check --vres --threads 1`): cases/hydrostatic_vres2d error 0.00979 (0.00970 with
+ * rho0 g, 0.01125 without either), cases/dambreak_lobovsky2d at dp 0.01 0.1772 (0.1867 with
+ * rho0 g, 0.1590 without).
+ *
  * The depth d comes from the donor's kernel sums, without knowing where the surface is: with a
  * kernel of smoothing length hs, sigma = hs sum_b V_b (-F(r)) (x_b - x) . g_hat over the donor's
- * fluid, buffer and walls (F = W'(r)/r, g_hat the unit vector along gravity) vanishes where the
+ * fluid, buffer and walls (F = W'(r)/r, g_hat the unit vector along grad p, gravity at rest) vanishes where the
  * support is full and grows towards a surface above the point; a wall or a region's edge below
  * the point makes it negative, which is read as no surface. For a flat surface at depth d over a
  * continuum, sigma = hs integral over the empty half-space of (-F) (y . -g_hat) dy, a function of
@@ -45,8 +54,9 @@
 
 /* What the buffers need to match a free surface's excess: the run's gravity and equation of state. */
 typedef struct vres_surface {
-    double g;        /* |gravity| (m/s^2); 0 turns the matching off */
-    double down[3];  /* unit vector along gravity */
+    double g;        /* |gravity| (m/s^2), 0 turning the matching off; vres_surface_match's rho0 g stands for the
+                        pressure gradient's size (couple.h passes |grad p| / rho0 here) */
+    double down[3];  /* unit vector along gravity (couple.h: along the pressure gradient) */
     double rho0;     /* reference density (kg/m^3) */
     double B;        /* Tait stiffness (Pa) */
     double gamma;    /* Tait exponent */

@@ -31,6 +31,10 @@
 #define DP 0.015625        /* lattice spacing 2^-6 (m) */
 #define QUANT 4096.0       /* positions are multiples of 1/QUANT m */
 #define EXACT_TOL 1e-12    /* linear exactness, relative to the field scale (header derivation) */
+#define GRAD_TOL 1e-9      /* the density gradient's exactness, relative to |grad rho|: the solution's
+                              gradient rows carry EXACT_TOL's rounding times the field scale over h
+                              (1e-12 x 1000 kg/m^3 / 0.022 m against |grad| 72 kg/m^4: 6e-10; measured at
+                              most 4e-12) */
 
 /* 1 in --compare mode, outside Check's runner: the helpers below then report a failed
  * precondition on stderr and abort instead of through Check (which needs a running test). */
@@ -211,6 +215,15 @@ static double lin_error(const set *S, const vres_liu_result *r, const double x[3
     return worst;
 }
 
+/* The relative error of r's density gradient against lin(0, .)'s: (64, 16, -32) kg/m^4 (y 0 in 2D). */
+static double grad_error(int dim, const vres_liu_result *r)
+{
+    const double g[3] = {64.0, dim == 2 ? 0.0 : 16.0, -32.0};
+    double e = 0, n = 0;
+    for (int a = 0; a < 3; a++) e += (r->grad[a] - g[a]) * (r->grad[a] - g[a]), n += g[a] * g[a];
+    return sqrt(e / n); /* NaN when the gradient is missing */
+}
+
 /* Brute-force Shepard value of field q (0 rho, 1..3 v) at x over the set's fluid, in slot order. */
 static double shepard_brute(const set *S, int q, const double x[3], double *sum)
 {
@@ -252,7 +265,7 @@ static double check_exact(int dim, double jitter, int varmass, uint64_t seed)
     set_lattice(&S, n, ztop, jitter, seed, varmass);
     set_finish(&S);
     const double depths[4] = {-1, 1, 0, -0.5}; /* -1: interior (random depth) */
-    double worst[4] = {0, 0, 0, 0}, kmin[4], kmax[4], shep_err = 0;
+    double worst[4] = {0, 0, 0, 0}, kmin[4], kmax[4], shep_err = 0, gworst = 0;
     for (int c = 0; c < 4; c++) {
         kmin[c] = INFINITY, kmax[c] = 0;
         for (int i = 0; i < (c == 0 ? 40 : 20); i++) {
@@ -264,6 +277,10 @@ static double check_exact(int dim, double jitter, int varmass, uint64_t seed)
                           depths[c], r.method, r.cond);
             ck_assert_msg(e < EXACT_TOL, "%dD jitter %g depth %g dp: error %.3e (kappa %g)", dim, jitter, depths[c], e,
                           r.cond);
+            const double ge = grad_error(dim, &r);
+            ck_assert_msg(ge < GRAD_TOL, "%dD jitter %g depth %g dp: gradient error %.3e (kappa %g)", dim, jitter,
+                          depths[c], ge, r.cond);
+            gworst = fmax(gworst, ge);
             worst[c] = fmax(worst[c], e);
             kmin[c] = fmin(kmin[c], r.cond), kmax[c] = fmax(kmax[c], r.cond);
             if (c == 3) { /* Shepard's density error at the surface, in units of |grad rho| h */
@@ -278,9 +295,9 @@ static double check_exact(int dim, double jitter, int varmass, uint64_t seed)
     ck_assert_msg(shep_err > 0.05, "%dD: Shepard surface error only %g |grad| h", dim, shep_err);
     printf("exact %dD jitter %.2f dp%s: max error interior %.1e, 1 dp down %.1e, top row %.1e, dp/2 above %.1e; "
            "kappa interior %.2f..%.2f, top row %.2f..%.2f, dp/2 above %.2f..%.2f; Shepard error dp/2 above %.2f "
-           "|grad| h\n",
+           "|grad| h; density gradient max error %.1e\n",
            dim, jitter, varmass ? ", variable masses" : "", worst[0], worst[1], worst[2], worst[3], kmin[0], kmax[0],
-           kmin[2], kmax[2], kmin[3], kmax[3], shep_err);
+           kmin[2], kmax[2], kmin[3], kmax[3], shep_err, gworst);
     set_free(&S);
     return fmax(fmax(worst[0], worst[1]), fmax(worst[2], worst[3]));
 }

@@ -1,6 +1,7 @@
 /* test_surface.c - unit tests of kernels/surface.h and of the coupling's use of it
  * (kernels/couple.h's vres_couple_sigma and vres_couple_surface): the free surface's pressure
- * excess that a buffer particle turns from its donor's lattice into its own.
+ * excess that a buffer particle turns from its donor's lattice into its own, scaled by the pressure
+ * gradient the interpolation gives.
  *
  * The sigma table is recomputed here by the midpoint rule (400 points a side, against the
  * table's 2000: its error, about 1e-4, sets the tolerance 1e-3). The depth a donor lattice's sums
@@ -156,27 +157,77 @@ START_TEST(test_probe_3d)
 }
 END_TEST
 
-/* What a buffer particle takes: the pressure turned by rho0 g (h_recv phi(d/h_recv) - h_don
- * phi(d/h_don)); nothing without gravity, in the bulk, or between lattices of one h. */
+/* L's fluid and buffer particles at the hydrostatic density of a column under gravity gz (m/s^2)
+ * below ZTOP (walls keep rho0). */
+static void set_hydrostatic(donor_set *L, double gz)
+{
+    const vres_surface *sf = &L->v.sf;
+    for (size_t b = 0; b < L->d.n; b++)
+        if (L->d.type[b] != VRES_FIXED)
+            L->d.rho[b] = (float)vres_tait_density(RHO0 * gz * (ZTOP - L->d.pos[3 * b + 2]), RHO0, sf->B, sf->gamma);
+}
+
+/* The interpolation at x from L (default settings: first order). */
+static vres_liu_result liu_at(const donor_set *L, const double x[3])
+{
+    const vres_donor *D = &L->v;
+    return vres_liu_at_x(&D->cells, D->o, D->pos, D->vel, D->rho, D->mass, D->type, x, NULL, NULL);
+}
+
+/* The pressure (Pa) of density rho under sf's Tait equation. */
+static double press(const vres_surface *sf, double rho)
+{
+    return vres_tait_pressure(rho, sf->rho0, sf->B, sf->gamma);
+}
+
+/* What a buffer particle takes: the pressure turned by G (h_recv phi(d/h_recv) - h_don phi(d/h_don)),
+ * G the pressure gradient's size from the interpolation (rho0 g at rest, within 1%: the lattice's
+ * hydrostatic field is linear in p, nearly so in rho), gravity's where the interpolation gave no
+ * gradient; nothing without gravity, without a gradient (a free jet), in the bulk, or between
+ * lattices of one h; twice the gradient, twice the excess. */
 START_TEST(test_match)
 {
     donor_set L = lat_new(2, 1, 15);
-    const double h = L.d.h, c = 12.5 * DP, rho = 1000.2;
+    set_hydrostatic(&L, G);
+    const double h = L.d.h, c = 12.5 * DP;
     const double top[3] = {c, 0, ZTOP - 0.25 * DP}, bulk[3] = {c, 0, 0.15};
     const vres_surface *sf = &L.v.sf;
-    /* a receiving lattice of half the spacing, half a fine spacing below the surface */
-    const double got = vres_couple_surface(&L.v, top, h / 2, rho);
+    vres_liu_result r = liu_at(&L, top);
+    ck_assert_int_eq(r.method, VRES_LIU_CORRECTED);
+    const double c2 = sf->B * sf->gamma / RHO0 * pow(r.rho / RHO0, sf->gamma - 1.0);
+    const double gr = sqrt(r.grad[0] * r.grad[0] + r.grad[1] * r.grad[1] + r.grad[2] * r.grad[2]);
+    ck_assert_msg(fabs(c2 * gr / (RHO0 * G) - 1) < 0.01, "G / rho0 g = %.4f", c2 * gr / (RHO0 * G));
+    ck_assert(-r.grad[2] / gr > 0.9999); /* into the water: down */
+    /* a receiving lattice of half the spacing, half a fine spacing below the surface: gravity's
+       excess (the depth from sigma along -z) within 2% */
+    const double got = vres_couple_surface(&L.v, top, h / 2, &r);
     const double q = vres_surface_depth(vres_couple_sigma(&L.v, top, h), 2), d = q * h;
     ck_assert(q >= 0 && q < 0.3);
     const double dp = RHO0 * G * (h / 2 * vres_surface_phi(d / (h / 2)) - h * vres_surface_phi(d / h));
     ck_assert(dp < -5 && dp > -20); /* the coarse top row's excess is about 22 Pa, the fine's 11 Pa */
-    const double want = vres_tait_density(vres_tait_pressure(rho, RHO0, sf->B, 7) + dp, RHO0, sf->B, 7);
-    ck_assert_double_eq_tol(got, want, 1e-9);
-    ck_assert(got < rho);
-    ck_assert_double_eq(vres_couple_surface(&L.v, bulk, h / 2, rho), rho);
-    ck_assert_double_eq_tol(vres_couple_surface(&L.v, top, h, rho), rho, 1e-9);
+    const double dgot = press(sf, got) - press(sf, r.rho);
+    ck_assert_msg(fabs(dgot / dp - 1) < 0.02, "excess %.4f Pa against gravity's %.4f Pa", dgot, dp);
+    /* no gradient from the interpolation (Shepard's value): gravity's, exactly */
+    vres_liu_result rs = r;
+    rs.grad[0] = rs.grad[1] = rs.grad[2] = NAN;
+    const double want = vres_tait_density(press(sf, r.rho) + dp, RHO0, sf->B, 7);
+    ck_assert_double_eq_tol(vres_couple_surface(&L.v, top, h / 2, &rs), want, 1e-9);
+    /* bulk, one h, no gravity: nothing */
+    vres_liu_result rb = liu_at(&L, bulk);
+    ck_assert_double_eq(vres_couple_surface(&L.v, bulk, h / 2, &rb), rb.rho);
+    ck_assert_double_eq_tol(vres_couple_surface(&L.v, top, h, &r), r.rho, 1e-9);
     L.v.sf.g = 0;
-    ck_assert_double_eq(vres_couple_surface(&L.v, top, h / 2, rho), rho);
+    ck_assert_double_eq(vres_couple_surface(&L.v, top, h / 2, &r), r.rho);
+    L.v.sf.g = G;
+    /* twice the gradient (a surge decelerating at g against a wall): twice the excess, within 2% */
+    set_hydrostatic(&L, 2 * G);
+    vres_liu_result r2 = liu_at(&L, top);
+    const double dgot2 = press(sf, vres_couple_surface(&L.v, top, h / 2, &r2)) - press(sf, r2.rho);
+    ck_assert_msg(fabs(dgot2 / (2 * dp) - 1) < 0.02, "excess %.4f Pa at 2g against %.4f Pa", dgot2, 2 * dp);
+    /* no gradient (a free jet: the same lattice at one density): nothing */
+    set_hydrostatic(&L, 0.0);
+    vres_liu_result r0 = liu_at(&L, top);
+    ck_assert_double_eq(vres_couple_surface(&L.v, top, h / 2, &r0), r0.rho);
     /* the table: the top row's value above it, 0 from the fourth row down */
     ck_assert_double_eq(vres_surface_phi(0.0), VRES_SURFACE_PHI0);
     ck_assert_double_eq(vres_surface_phi(3.0), 0.0);
