@@ -405,14 +405,13 @@ VRES_HD static inline void vres_couple_sigma_vec(const vres_donor *D, const doub
             }
 }
 
-/* sigma (surface.h) at x (m) over donor D with smoothing length hs (m) along gravity (D->sf.down):
- * hs S . down (vres_couple_sigma_vec). */
-VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double x[3], double hs)
+/* sigma (surface.h) at x (m) over donor D with smoothing length hs (m) along the unit vector n:
+ * hs S . n (vres_couple_sigma_vec). */
+VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double x[3], double hs, const double n[3])
 {
     double S[3];
     vres_couple_sigma_vec(D, x, hs, S);
-    const double *down = D->sf.down;
-    return hs * (S[0] * down[0] + S[1] * down[1] + S[2] * down[2]);
+    return hs * (S[0] * n[0] + S[1] * n[1] + S[2] * n[2]);
 }
 
 /* The density (kg/m^3) buffer particle at x (m) of a domain with smoothing length h (m) takes for
@@ -433,14 +432,11 @@ VRES_HD static inline double vres_couple_surface(const vres_donor *D, const doub
     if (r->grad[0] == r->grad[0]) { /* not NaN: the corrected value's gradient */
         const double gr = sqrt(r->grad[0] * r->grad[0] + r->grad[1] * r->grad[1] + r->grad[2] * r->grad[2]);
         if (!(gr > 0)) return r->rho;
-        const double c2 = sf.B * sf.gamma / sf.rho0 * pow(r->rho / sf.rho0, sf.gamma - 1.0);
+        const double c2 = vres_tait_c2(r->rho, sf.rho0, sf.B, sf.gamma);
         for (int a = 0; a < 3; a++) sf.down[a] = r->grad[a] / gr;
         sf.g = c2 * gr / sf.rho0; /* G / rho0 (m/s^2): vres_surface_match's rho0 g is G */
     }
-    double S[3];
-    vres_couple_sigma_vec(D, x, hs, S);
-    const double sig = hs * (S[0] * sf.down[0] + S[1] * sf.down[1] + S[2] * sf.down[2]);
-    const double q = vres_surface_depth(sig, D->cells.dim);
+    const double q = vres_surface_depth(vres_couple_sigma(D, x, hs, sf.down), D->cells.dim);
     return vres_surface_match(&sf, r->rho, q < 0 ? -1.0 : q * hs, h, hd);
 }
 

@@ -681,15 +681,20 @@ VRES_HD VRES_CLONES static inline double vres_liu_block_cond(const vres_liu_acc 
     }
 }
 
+/* Row i of inv (n x n) against the right sides of field q (0 rho, 1..3 v). */
+VRES_HD static inline double vres_liu_row_dot(const vres_liu_acc *s, int n,
+                                              const double inv[VRES_LIU_NMAX][VRES_LIU_NMAX], int i, int q)
+{
+    double v = 0;
+    for (int j = 0; j < n; j++) v += inv[i][j] * s->r[q][j];
+    return v;
+}
+
 /* f[q] = the first row of inv (n x n) against the right sides of field q. */
 VRES_HD static inline void vres_liu_first_row(const vres_liu_acc *s, int n,
                                               const double inv[VRES_LIU_NMAX][VRES_LIU_NMAX], double f[4])
 {
-    for (int q = 0; q < 4; q++) {
-        double v = 0;
-        for (int j = 0; j < n; j++) v += inv[0][j] * s->r[q][j];
-        f[q] = v;
-    }
+    for (int q = 0; q < 4; q++) f[q] = vres_liu_row_dot(s, n, inv, 0, q);
 }
 
 /* grad = the density's gradient (kg/m^4) from rows 1..dim of inv (n x n) against the density's right
@@ -699,11 +704,7 @@ VRES_HD static inline void vres_liu_grad_rho(const vres_liu_acc *s, int n, int d
                                              const double inv[VRES_LIU_NMAX][VRES_LIU_NMAX], double grad[3])
 {
     grad[0] = grad[1] = grad[2] = 0.0;
-    for (int i = 1; i <= dim; i++) {
-        double v = 0;
-        for (int j = 0; j < n; j++) v += inv[i][j] * s->r[0][j];
-        grad[dim == 2 && i == 2 ? 2 : i - 1] = v / h;
-    }
+    for (int i = 1; i <= dim; i++) grad[dim == 2 && i == 2 ? 2 : i - 1] = vres_liu_row_dot(s, n, inv, i, 0) / h;
 }
 
 /* The result for the sums s of dimension dim under the settings o: the too-little-support

@@ -116,31 +116,31 @@ static void check_probe(int dim)
     const double h = L.d.h, c = 12.5 * DP; /* the middle column */
     for (int r = 0; r < 3; r++) {         /* the top rows, and a point half a spacing above the top */
         const double d = (r + 0.5) * DP, x[3] = {c, dim == 2 ? 0 : c, ZTOP - d};
-        const double q = vres_surface_depth(vres_couple_sigma(&L.v, x, h), dim);
+        const double q = vres_surface_depth(vres_couple_sigma(&L.v, x, h, L.v.sf.down), dim);
         if (r < 2) ck_assert_msg(fabs(q - d / h) < 0.1, "%dD row %d: depth %.3f h, true %.3f h", dim, r, q, d / h);
         else ck_assert_msg(q < 0 || fabs(q - d / h) < 0.1, "%dD row %d: depth %.3f h, true %.3f h", dim, r, q, d / h);
     }
     /* with twice the smoothing length the probe reaches twice as deep */
     const double x2[3] = {c, dim == 2 ? 0 : c, ZTOP - 1.5 * DP};
-    const double q2 = vres_surface_depth(vres_couple_sigma(&L.v, x2, 2 * h), dim);
+    const double q2 = vres_surface_depth(vres_couple_sigma(&L.v, x2, 2 * h, L.v.sf.down), dim);
     ck_assert_msg(fabs(q2 - 1.5 * DP / (2 * h)) < 0.1, "%dD wide probe: depth %.3f, true %.3f", dim, q2,
                   1.5 * DP / (2 * h));
     const double bulk[3] = {c, dim == 2 ? 0 : c, 0.15}, floor[3] = {c, dim == 2 ? 0 : c, 0.01},
                  side[3] = {0.01, dim == 2 ? 0 : c, 0.15};
-    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, bulk, h), dim), -1.0);
-    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, floor, h), dim), -1.0);
-    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, side, h), dim), -1.0);
+    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, bulk, h, L.v.sf.down), dim), -1.0);
+    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, floor, h, L.v.sf.down), dim), -1.0);
+    ck_assert_double_eq(vres_surface_depth(vres_couple_sigma(&L.v, side, h, L.v.sf.down), dim), -1.0);
     donor_free(&L);
     /* no walls under the floor: missing mass below reads as no surface too (sigma < 0) */
     L = lat_new(dim, 0, 15);
-    ck_assert(vres_couple_sigma(&L.v, floor, h) < -VRES_SURFACE_SIGMA_MIN);
+    ck_assert(vres_couple_sigma(&L.v, floor, h, L.v.sf.down) < -VRES_SURFACE_SIGMA_MIN);
     donor_free(&L);
     /* the top three rows buffer: counted (the donor's region ends there, not its water), so the
        fourth row, 3.5 dp = 2.5 h (2D) below the surface, has none within reach (its fluid's top
        row, were the buffer left out) */
     L = lat_new(dim, 1, 12);
     const double x[3] = {c, dim == 2 ? 0 : c, ZTOP - 3.5 * DP};
-    const double q = vres_surface_depth(vres_couple_sigma(&L.v, x, h), dim);
+    const double q = vres_surface_depth(vres_couple_sigma(&L.v, x, h, L.v.sf.down), dim);
     ck_assert_msg(q < 0, "%dD under three buffer rows: depth %.3f h, none expected", dim, q);
     donor_free(&L);
 }
@@ -194,14 +194,14 @@ START_TEST(test_match)
     const vres_surface *sf = &L.v.sf;
     vres_liu_result r = liu_at(&L, top);
     ck_assert_int_eq(r.method, VRES_LIU_CORRECTED);
-    const double c2 = sf->B * sf->gamma / RHO0 * pow(r.rho / RHO0, sf->gamma - 1.0);
+    const double c2 = vres_tait_c2(r.rho, RHO0, sf->B, sf->gamma);
     const double gr = sqrt(r.grad[0] * r.grad[0] + r.grad[1] * r.grad[1] + r.grad[2] * r.grad[2]);
     ck_assert_msg(fabs(c2 * gr / (RHO0 * G) - 1) < 0.01, "G / rho0 g = %.4f", c2 * gr / (RHO0 * G));
     ck_assert(-r.grad[2] / gr > 0.9999); /* into the water: down */
     /* a receiving lattice of half the spacing, half a fine spacing below the surface: gravity's
        excess (the depth from sigma along -z) within 2% */
     const double got = vres_couple_surface(&L.v, top, h / 2, &r);
-    const double q = vres_surface_depth(vres_couple_sigma(&L.v, top, h), 2), d = q * h;
+    const double q = vres_surface_depth(vres_couple_sigma(&L.v, top, h, L.v.sf.down), 2), d = q * h;
     ck_assert(q >= 0 && q < 0.3);
     const double dp = RHO0 * G * (h / 2 * vres_surface_phi(d / (h / 2)) - h * vres_surface_phi(d / h));
     ck_assert(dp < -5 && dp > -20); /* the coarse top row's excess is about 22 Pa, the fine's 11 Pa */
