@@ -96,6 +96,7 @@
 #include "cells.h"
 #include "crossing.h"
 #include "device.h"
+#include "keep.h"
 #include "ptype.h"
 #include "wendland.h"
 
@@ -345,7 +346,8 @@ VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
                                              const double *pos, const float *vel, const float *rho,
                                              const double *mass, const uint8_t *type, const double x[3],
-                                             vres_cross *X, vres_liu_cache *C, const int N, const int DIM)
+                                             vres_cross *X, vres_liu_cache *C, const int N, const int DIM,
+                                             const int fresh)
 {
     vres_cell_range nb[27];
     int m = 0, cx[3];
@@ -358,15 +360,17 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
     const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
     const vres_wendland k = o.k;
-    double A[VRES_LIU_NMAX][VRES_LIU_ROW], Rt[VRES_LIU_NMAX][4], div = s->div, d2min = s->d2min;
-    int nfluid = s->nfluid;
+    /* the sums so far: s's, or with fresh 1 (a compile-time constant) empty ones, s not read */
+    double A[VRES_LIU_NMAX][VRES_LIU_ROW], Rt[VRES_LIU_NMAX][4], div = fresh ? 0.0 : s->div;
+    double d2min = fresh ? INFINITY : s->d2min;
+    int nfluid = fresh ? 0 : s->nfluid;
     double cm = 0; /* X's crossing count so far (kg) */
     for (int i = 0; i < N; i++) {
-        for (int j = 0; j < P; j++) A[i][j] = j < N ? s->a[i][j] : 0.0;
-        for (int q = 0; q < 4; q++) Rt[i][q] = s->r[q][i];
+        for (int j = 0; j < P; j++) A[i][j] = j < N && !fresh ? s->a[i][j] : 0.0;
+        for (int q = 0; q < 4; q++) Rt[i][q] = fresh ? 0.0 : s->r[q][i];
     }
     struct { /* one pass's candidates */
-        double d[3][VRES_LIU_LIST]; /* x_b - x (m; y 0 in 2D) */
+        double d[3][VRES_LIU_LIST]; /* x_b - x (m; y unset in 2D) */
         double r2[VRES_LIU_LIST];   /* |x_b - x|^2 (m^2) */
         size_t b[VRES_LIU_LIST];    /* slot */
         uint8_t kept[VRES_LIU_LIST]; /* [0, nkept): indices of the kept candidates */
@@ -383,12 +387,11 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         double vb[VRES_LIU_LIST];   /* V = m / den (m^3) */
     } Q;
     vres_liu_rows S;
-    if (DIM == 2)
-        for (int j = 0; j < VRES_LIU_LIST; j++) L.d[1][j] = 0.0;
     int c = 0, kc = 0; /* the next range, or the next cache entry */
     size_t b0 = m ? nb[0].begin : 0;
     while (K ? kc < K->n : c < m) {
-        int nc = 0; /* candidates in this pass */
+        int nc = 0;              /* candidates in this pass */
+        const size_t *lb = L.b; /* their slots: L.b, or the cache's own */
         if (K) { /* 1 from the cache: the same offsets and distances, read side by side */
             nc = K->n - kc < VRES_LIU_LIST ? K->n - kc : VRES_LIU_LIST;
             const double *k0 = K->x[0] + kc, *k1 = K->x[1] + kc, *k2 = K->x[2] + kc;
@@ -398,8 +401,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
                 L.d[0][j] = d0, L.d[2][j] = d2;
                 L.r2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
                 if (DIM == 3) L.d[1][j] = d1;
-                L.b[j] = K->b[kc + j];
             }
+            lb = K->b + kc;
             kc += nc;
         }
         for (; !K && c < m; c++, b0 = c < m ? nb[c].begin : 0) {
@@ -416,7 +419,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
                 const double d0 = pb[3 * j] + sh[0] - x[0], d2 = pb[3 * j + 2] + sh[2] - x[2];
                 const double d1 = DIM == 2 ? 0.0 : pb[3 * j + 1] + sh[1] - x[1];
                 c0[j] = d0, c2[j] = d2, cr2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
-                if (DIM == 3) c1[j] = d1; /* 2D: y offsets stay 0 (set before the passes) */
+                if (DIM == 3) c1[j] = d1; /* 2D: no y offsets */
                 cb[j] = b0 + (size_t)j;
             }
             nc += len;
@@ -425,15 +428,11 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         }
         /* 2: the candidates inside the support (about a third of them), then of those the donor
            fluid and walls, each pass without a branch; 3: their masses and densities */
-        int ns = 0;
-        for (int j = 0; j < nc; j++) {
-            L.kept[ns] = (uint8_t)j;
-            ns += L.r2[j] < fourh2;
-        }
+        const int ns = vres_keep_within(L.r2, nc, -1.0, fourh2, L.kept);
         int nk = 0;
         for (int i = 0; i < ns; i++) {
             const int j = L.kept[i]; /* read before kept[nk], nk <= i, is written */
-            const size_t b = L.b[j];
+            const size_t b = lb[j];
             const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
             L.kept[nk] = (uint8_t)j;
             Q.r2[nk] = L.r2[j];
@@ -460,12 +459,12 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         int nf = 0;
         for (int j = 0; j < nk; j++) {
             const int i0 = L.kept[j];
-            const size_t b = L.b[i0];
+            const size_t b = lb[i0];
             div += Q.dv[j];
             if (!vres_type_is_fluid(type[b])) continue; /* a wall: D only */
             const double r2 = Q.r2[j];
             d2min = r2 < d2min ? r2 : d2min;
-            const double d[3] = {L.d[0][i0], L.d[1][i0], L.d[2][i0]};
+            const double d[3] = {L.d[0][i0], DIM == 3 ? L.d[1][i0] : 0.0, L.d[2][i0]};
             if (X) cm += vres_cross_term(X, b, d, Q.mb[j]);
             /* column e = [1, d/h (, d_i d_j / h^2)]; test row tr = V [W, h grad_a W (, h^2 grad_a grad_a W)]
                = V [W, -F h^2 (d/h) (, h^2 F delta_ij + h^2 (dF/dr) d_i d_j / r)] */
@@ -497,8 +496,26 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         for (int j = 0; j < N; j++) s->a[i][j] = A[i][j];
         for (int q = 0; q < 4; q++) s->r[q][i] = Rt[i][q];
     }
+    s->n = N;
     s->div = div, s->d2min = d2min, s->nfluid = nfluid;
     if (X) X->m = cm;
+}
+
+/* vres_liu_gather_n for s->n unknowns in g's dimension (the sizes vres_liu_size gives); with
+ * fresh 1 the sums start empty (s's are not read: only s->n need be set). */
+VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_sw(vres_liu_acc *s, const vres_cells *g,
+                                                                vres_liu_opts o, const double *pos, const float *vel,
+                                                                const float *rho, const double *mass,
+                                                                const uint8_t *type, const double x[3], vres_cross *X,
+                                                                vres_liu_cache *C, const int fresh)
+{
+    if (g->dim == 2) {
+        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 6, 2, fresh);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 3, 2, fresh);
+    } else {
+        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 10, 3, fresh);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 4, 3, fresh);
+    }
 }
 
 /* Accumulate into s the donors of x (m) in the cells g (slot order): positions (m), velocities
@@ -514,13 +531,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_x(vres_liu_acc *s, 
                                                                const double *mass, const uint8_t *type,
                                                                const double x[3], vres_cross *X, vres_liu_cache *C)
 {
-    if (g->dim == 2) {
-        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 6, 2);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 3, 2);
-    } else {
-        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 10, 3);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 4, 3);
-    }
+    vres_liu_gather_sw(s, g, o, pos, vel, rho, mass, type, x, X, C, 0);
 }
 
 /* vres_liu_gather_x without a segment. */
@@ -765,8 +776,8 @@ VRES_HD VRES_CLONES static inline vres_liu_result vres_liu_at_x(const vres_cells
                                                     vres_liu_cache *C)
 {
     vres_liu_acc s;
-    vres_liu_acc_zero(&s, vres_liu_size(g->dim, o.order));
-    vres_liu_gather_x(&s, g, o, pos, vel, rho, mass, type, x, X, C);
+    s.n = vres_liu_size(g->dim, o.order);
+    vres_liu_gather_sw(&s, g, o, pos, vel, rho, mass, type, x, X, C, 1); /* s's sums start empty */
     return vres_liu_solve(&s, g->dim, o);
 }
 

@@ -31,6 +31,7 @@
 #include "cells.h"
 #include "cubic.h"
 #include "device.h"
+#include "keep.h"
 #include "ptype.h"
 #include "wendland.h"
 
@@ -659,8 +660,6 @@ typedef struct vres_sph_cands {
     double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
     double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
     size_t b[VRES_SPH_LIST];                                        /* slot */
-    double in[VRES_SPH_LIST]; /* 1 inside the support (not a itself), else 0; a double, so that the
-                                 distance loop works on one vector type */
     uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
 } vres_sph_cands;
 
@@ -686,7 +685,7 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass(vres_sph_cands *L, con
         if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
         const int len = (int)(e - b0);
         const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
-        double *cdx = L->dx + nc, *cdy = L->dy + nc, *cdz = L->dz + nc, *cr2 = L->r2 + nc, *cin = L->in + nc;
+        double *cdx = L->dx + nc, *cdy = L->dy + nc, *cdz = L->dz + nc, *cr2 = L->r2 + nc;
         size_t *cb = L->b + nc;
 #pragma omp simd
         for (int j = 0; j < len; j++) {
@@ -695,19 +694,13 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass(vres_sph_cands *L, con
             const double r2 = D3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
             cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
             if (D3) cdy[j] = dy;
-            cin[j] = r2 < fourh2 && r2 >= tiny ? 1.0 : 0.0;
         }
         nc += len;
         b0 = e;
         if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
     }
     *cp = c, *b0p = b0;
-    int nkept = 0;
-    for (int j = 0; j < nc; j++) {
-        L->kept[nkept] = (uint8_t)j;
-        nkept += (int)L->in[j];
-    }
-    return nkept;
+    return vres_keep_within(L->r2, nc, tiny, fourh2, L->kept); /* inside the support, a itself (r2 < tiny) out */
 }
 
 /* vres_sph_shift_sums of buffer (or inlet) particle a in the cell-wise loop: its neighbours in
