@@ -286,7 +286,7 @@ typedef struct vres_liu_cache {
     const vres_cells *g;            /* the donor cells it was filled from; NULL: empty */
     int cx[3];                      /* the cell whose neighbourhood it holds */
     int n;                          /* entries; -1: the neighbourhood has more than VRES_LIU_CACHE */
-    double x[3][VRES_LIU_CACHE];    /* position plus the cell range's periodic shift (m; y unused in 2D) */
+    double x[3][VRES_LIU_CACHE];    /* position plus the cell range's periodic shift (m; y unset in 2D) */
     size_t b[VRES_LIU_CACHE];       /* slot */
 } vres_liu_cache;
 
@@ -317,7 +317,9 @@ VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells
                 C->n = -1;
                 return 0;
             }
-            for (int a = 0; a < 3; a++) C->x[a][n] = pos[3 * b + a] + nb[c].shift[a];
+            C->x[0][n] = pos[3 * b] + nb[c].shift[0];
+            if (g->dim == 3) C->x[1][n] = pos[3 * b + 1] + nb[c].shift[1];
+            C->x[2][n] = pos[3 * b + 2] + nb[c].shift[2];
             C->b[n++] = b;
         }
     C->n = n;
