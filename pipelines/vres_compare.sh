@@ -25,6 +25,10 @@
 # state by about one float32 ulp, seed 0 not at all), and each variant's error is the mean over
 # the rounds, their spread in the footer: where an error is chaotic in the particles' disorder
 # (the Taylor-Green vortex's is: one ulp moves it by a quarter), one run's error is one sample.
+# VRES_RUN_ARGS="..." passes vres-run options to every run (pipelines/vreslib.sh), e.g.
+# "--vres-order 1" (it changes only the variable run); the table's first line then names them.
+# REPORT=NAME writes NAME.tsv, NAME.png and NAME_profile.png instead (a variant's table beside
+# the default's).
 # The runs stay in build/runs/vres_compare/CASE/ (RUNS=DIR to change). Exit 0 when the criterion
 # holds.
 set -u
@@ -38,6 +42,8 @@ ROUNDS=${ROUNDS:-3}
 [ -n "$SEEDS" ] && ROUNDS=$(echo $SEEDS | wc -w)
 RUNS=${RUNS:-$ROOT/build/runs/vres_compare/$CASE}
 REP=$ROOT/pipelines/reports/$CASE
+NAME=${REPORT:-vres_compare}                                     # the report's files' names
+PROF=$([ "$NAME" = vres_compare ] && echo vres_profile || echo "${NAME}_profile")
 CHECK=$ROOT/cases/$CASE/check
 [ -x "$CHECK" ] || { echo "vres_compare: $CHECK: no check" >&2; exit 2; }
 mkdir -p "$RUNS" "$REP"
@@ -79,7 +85,8 @@ error_of() {
     if [ -z "$SEEDS" ]; then get "$1" error; else awk '{s += $1; n++} END {printf "%.5f", s / n}' "$RUNS/$1.errors"; fi
 }
 {
-    printf '# %s: variable against single resolution (%s pipelines/vres_compare.sh %s %s %s %s)\n' "$CASE" \
+    printf '# %s: variable against single resolution (%s%s pipelines/vres_compare.sh %s %s %s %s)\n' "$CASE" \
+        "${REPORT:+REPORT=$REPORT }${VRES_RUN_ARGS:+VRES_RUN_ARGS=\"$VRES_RUN_ARGS\" }" \
         "$([ -n "$SEEDS" ] && echo "SEEDS=\"$SEEDS\"" || echo "ROUNDS=$ROUNDS")" "$CASE" "$DPC" "$R" "$THREADS"
     printf '# made: %s on %s (%s CPUs), vres git %s; error: %s\n' "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$(uname -n)" "$(nproc)" \
         "$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null)" "$(get vres error_def)"
@@ -99,7 +106,7 @@ error_of() {
         printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$v" "$dp" "$(get $v particles)" "$(get $v steps)" "$(median $v)" \
             "$(error_of $v)" "$(get $v verdict)" "${cpu:--}"
     done
-} >"$REP/vres_compare.tsv.tmp"
+} >"$REP/$NAME.tsv.tmp"
 awk -F'\t' '!/^#/ {n[$1] = $3 * $4; t[$1] = $5; e[$1] = $6; c[$1] = $8}
     END {
         bound = e["single_fine"] + 0.25 * (e["single_coarse"] - e["single_fine"])
@@ -112,19 +119,19 @@ awk -F'\t' '!/^#/ {n[$1] = $3 * $4; t[$1] = $5; e[$1] = $6; c[$1] = $8}
             printf "# the same on CPU time (not judged; steadier than wall time on a loaded machine): %g s <= %g s: %s\n", c["vres"], cbound, c["vres"] <= cbound ? "yes" : "NO"
         }
         printf "# verdict\t%s\n", ok ? "pass" : "FAIL"
-    }' "$REP/vres_compare.tsv.tmp" >>"$REP/vres_compare.tsv.tmp"
-mv "$REP/vres_compare.tsv.tmp" "$REP/vres_compare.tsv"
-cat "$REP/vres_compare.tsv"
+    }' "$REP/$NAME.tsv.tmp" >>"$REP/$NAME.tsv.tmp"
+mv "$REP/$NAME.tsv.tmp" "$REP/$NAME.tsv"
+cat "$REP/$NAME.tsv"
 if command -v gnuplot >/dev/null; then
-    gnuplot -e "t='$REP/vres_compare.tsv'; set terminal pngcairo size 800,560 noenhanced font ',11'; set output '$REP/vres_compare.png';
+    gnuplot -e "t='$REP/$NAME.tsv'; set terminal pngcairo size 800,560 noenhanced font ',11'; set output '$REP/$NAME.png';
         set datafile separator '\t'; set logscale xy; set grid; set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1;
         set title '$CASE: error against run time'; set xlabel 'vres-run wall-clock time (s)'; set ylabel 'error';
         plot t using 5:6:(sprintf('%s\ndp %g, %d particles', stringcolumn(1), \$2, \$3)) with labels point pointtype 7 offset char 1,char 1 left notitle"
-    [ -f "$RUNS/vres/profile.tsv" ] && gnuplot -e "set terminal pngcairo size 800,560 noenhanced font ',11'; set output '$REP/vres_profile.png'; set grid;
+    [ -f "$RUNS/vres/profile.tsv" ] && gnuplot -e "set terminal pngcairo size 800,560 noenhanced font ',11'; set output '$REP/$PROF.png'; set grid;
         set title '$CASE: compared quantity against its reference'; set xlabel '$XLABEL'; set ylabel '$YLABEL';
         plot '$RUNS/single_coarse/profile.tsv' using 1:3 with lines lw 2 title 'reference',
              '$RUNS/single_coarse/profile.tsv' using 1:2 with points pt 6 title 'single, dp $DPC',
              '$RUNS/single_fine/profile.tsv' using 1:2 with points pt 4 title 'single, dp $DPF',
              '$RUNS/vres/profile.tsv' using 1:2 with points pt 7 title 'variable, dp $DPC / $DPF'"
 fi
-grep -q '^# verdict.pass' "$REP/vres_compare.tsv"
+grep -q '^# verdict.pass' "$REP/$NAME.tsv"
