@@ -18,13 +18,13 @@ VRES_HD static inline double vres_tait_pressure(double rho, double rho0, double 
     return B * (pow(x, gamma) - 1.0);
 }
 
-/* Density (kg/m^3) giving pressure p (Pa): the inverse of vres_tait_pressure. */
 /* c^2 = dp/drho (m^2/s^2) of Tait's equation at density rho: B gamma / rho0 (rho/rho0)^(gamma-1). */
 VRES_HD static inline double vres_tait_c2(double rho, double rho0, double B, double gamma)
 {
     return B * gamma / rho0 * pow(rho / rho0, gamma - 1.0);
 }
 
+/* Density (kg/m^3) giving pressure p (Pa): the inverse of vres_tait_pressure. */
 VRES_HD static inline double vres_tait_density(double p, double rho0, double B, double gamma)
 {
     return rho0 * pow(1.0 + p / B, 1.0 / gamma);

@@ -498,18 +498,24 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         for (int j = 0; j < N; j++) s->a[i][j] = A[i][j];
         for (int q = 0; q < 4; q++) s->r[q][i] = Rt[i][q];
     }
-    s->n = N;
     s->div = div, s->d2min = d2min, s->nfluid = nfluid;
     if (X) X->m = cm;
 }
 
-/* vres_liu_gather_n for s->n unknowns in g's dimension (the sizes vres_liu_size gives); with
- * fresh 1 the sums start empty (s's are not read: only s->n need be set). */
-VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_sw(vres_liu_acc *s, const vres_cells *g,
-                                                                vres_liu_opts o, const double *pos, const float *vel,
-                                                                const float *rho, const double *mass,
-                                                                const uint8_t *type, const double x[3], vres_cross *X,
-                                                                vres_liu_cache *C, const int fresh)
+/* Accumulate into s the donors of x (m) in the cells g (slot order): positions (m), velocities
+ * (m/s), densities (kg/m^3), masses (kg) and types (store.h) of the donor domain. Fluid enters
+ * everything, walls only D; buffer and inlet particles nothing. 2D ignores y (x-z plane). With X
+ * (else NULL), the segment at x, whose reach one piece covers (X->np 1), also gets its crossing
+ * count over the donors inside the support into X->m (kg): every particle that can add to it is
+ * one (a step's motion stays below dp_b / 2, crossing.h), so it is vres_couple_crossing's sum, the
+ * same terms in the same order. With C (else NULL), the donors are read from that cache of the
+ * point's donor cell (filled when it holds another), the same sums. With fresh 1 the sums start
+ * empty and s's are not read (only s->n, the unknowns, vres_liu_size, need be set). */
+VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_x(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
+                                                               const double *pos, const float *vel, const float *rho,
+                                                               const double *mass, const uint8_t *type,
+                                                               const double x[3], vres_cross *X, vres_liu_cache *C,
+                                                               const int fresh)
 {
     if (g->dim == 2) {
         if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 6, 2, fresh);
@@ -520,28 +526,12 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_sw(vres_liu_acc *s,
     }
 }
 
-/* Accumulate into s the donors of x (m) in the cells g (slot order): positions (m), velocities
- * (m/s), densities (kg/m^3), masses (kg) and types (store.h) of the donor domain. Fluid enters
- * everything, walls only D; buffer and inlet particles nothing. 2D ignores y (x-z plane). With X
- * (else NULL), the segment at x, whose reach one piece covers (X->np 1), also gets its crossing
- * count over the donors inside the support into X->m (kg): every particle that can add to it is
- * one (a step's motion stays below dp_b / 2, crossing.h), so it is vres_couple_crossing's sum, the
- * same terms in the same order. With C (else NULL), the donors are read from that cache of the
- * point's donor cell (filled when it holds another), the same sums. */
-VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_x(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
-                                                               const double *pos, const float *vel, const float *rho,
-                                                               const double *mass, const uint8_t *type,
-                                                               const double x[3], vres_cross *X, vres_liu_cache *C)
-{
-    vres_liu_gather_sw(s, g, o, pos, vel, rho, mass, type, x, X, C, 0);
-}
-
 /* vres_liu_gather_x without a segment. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o, const double *pos,
                                            const float *vel, const float *rho, const double *mass,
                                            const uint8_t *type, const double x[3])
 {
-    vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL, NULL);
+    vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL, NULL, 0);
 }
 
 /* vres_liu_invert's body for n unknowns, a compile-time constant where vres_liu_invert calls it
@@ -779,7 +769,7 @@ VRES_HD VRES_CLONES static inline vres_liu_result vres_liu_at_x(const vres_cells
 {
     vres_liu_acc s;
     s.n = vres_liu_size(g->dim, o.order);
-    vres_liu_gather_sw(&s, g, o, pos, vel, rho, mass, type, x, X, C, 1); /* s's sums start empty */
+    vres_liu_gather_x(&s, g, o, pos, vel, rho, mass, type, x, X, C, 1); /* s's sums start empty */
     return vres_liu_solve(&s, g->dim, o);
 }
 

@@ -7,9 +7,9 @@
  * next through a compare, a flag and a store whose address depends on it: about four cycles a
  * candidate, and a candidate list is mostly rejects (a 3^dim block of cells of width 2h holds
  * about three times the support's particles in 2D, five times in 3D). On the CPU the test is
- * made on four candidates at once (GCC's vectors of four doubles: one compare instruction with
- * AVX2); their four flags index a table of where the kept ones go,
- * whose four byte indices are stored in one write and ns advanced by their count. The same
+ * made on four candidates at once (GCC's vectors of four doubles: a compare instruction per bound
+ * with AVX2); their four flags index a table of where the kept ones go, whose four byte indices
+ * are stored in one write and ns advanced by their count. The same
  * indices in the same order, so every sum over them comes out the same to the bit. */
 #ifndef VRES_KERNELS_KEEP_H
 #define VRES_KERNELS_KEEP_H
