@@ -41,6 +41,7 @@
 #include "crossing.h"
 #include "device.h"
 #include "interp_liu.h"
+#include "keep.h"
 #include "ptype.h"
 #include "region.h"
 #include "surface.h"
@@ -365,12 +366,67 @@ VRES_CACHED_LOOP(vres_couple_segment_loop, vres_couple_segment_one,
                  (const vres_donor *donors, vres_segments S, vres_couple_walls w, double dp, double dt),
                  (donors, S, w, dp, dt))
 
+/* Candidates the sigma pass looks at per turn (a GPU thread holds them in slow local memory:
+ * fewer there). */
+#ifdef __CUDA_ARCH__
+#define VRES_SIGMA_LIST 16
+#else
+#define VRES_SIGMA_LIST 64
+#endif
+
+/* Add to S (1/m) the terms of vres_couple_sigma_vec of donor D's slots [b, e) seen shifted by sh
+ * (m) from x (m): kernel k, squared reach r2max (m^2). As the gather's passes (interp_liu.h),
+ * each turn of up to VRES_SIGMA_LIST slots computes the offsets and distances side by side, keeps
+ * those inside the reach (keep.h), of them the fluid, buffer and walls, computes their weights
+ * side by side, then adds them in slot order: the same terms in the same order as one slot at a
+ * time, so the same sums to the bit. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_couple_sigma_run(const vres_donor *D, size_t b, size_t e,
+                                                                   const double sh[3], const double x[3],
+                                                                   vres_wendland k, double r2max, double S[3])
+{
+    const int dim = D->cells.dim;
+    double d[3][VRES_SIGMA_LIST], r2[VRES_SIGMA_LIST], w[VRES_SIGMA_LIST], m[VRES_SIGMA_LIST], den[VRES_SIGMA_LIST];
+    uint8_t kept[VRES_SIGMA_LIST];
+    while (b < e) {
+        const int len = e - b > VRES_SIGMA_LIST ? VRES_SIGMA_LIST : (int)(e - b);
+        const double *p = D->pos + 3 * b;
+#pragma omp simd
+        for (int j = 0; j < len; j++) {
+            const double d0 = p[3 * j] + sh[0] - x[0], d2 = p[3 * j + 2] + sh[2] - x[2];
+            const double d1 = dim == 2 ? 0.0 : p[3 * j + 1] + sh[1] - x[1];
+            d[0][j] = d0, d[1][j] = d1, d[2][j] = d2;
+            r2[j] = d0 * d0 + d1 * d1 + d2 * d2;
+        }
+        const int ns = vres_keep_within(r2, len, -1.0, r2max, kept);
+        int nk = 0;
+        for (int i = 0; i < ns; i++) { /* of those inside, the fluid, buffer and walls */
+            const int j = kept[i];     /* read before kept[nk], nk <= i, is written */
+            const int t = D->type[b + (size_t)j], wall = vres_type_is_wall(t);
+            kept[nk] = (uint8_t)j;
+            m[nk] = D->mass[b + (size_t)j];
+            den[nk] = wall ? D->o.rho0 : (double)D->rho[b + (size_t)j];
+            w[nk] = r2[j];
+            nk += wall || vres_type_acts_fluid(t);
+        }
+#pragma omp simd
+        for (int i = 0; i < nk; i++) w[i] = m[i] / den[i] * -vres_wendland_f(k, sqrt(w[i]));
+        for (int i = 0; i < nk; i++) {
+            const int j = kept[i];
+            S[0] += w[i] * d[0][j], S[1] += w[i] * d[1][j], S[2] += w[i] * d[2][j];
+        }
+        b += (size_t)len;
+    }
+}
+
 /* The vector sum behind sigma (surface.h) at x (m) over donor D's fluid, buffer and walls with a
  * Wendland kernel of smoothing length hs (m), which may exceed D's (the cells around x out to
  * 2 hs): S = sum_b V_b (-F(r)) (x_b - x) (1/m), V_b = m_b / rho_b (m_b / rho0
  * for a wall); sigma along a unit vector n is hs S . n. Buffer particles count here, unlike in
- * the interpolation: the donor's fluid region ends at its band, which is no surface. */
-VRES_HD static inline void vres_couple_sigma_vec(const vres_donor *D, const double x[3], double hs, double S[3])
+ * the interpolation: the donor's fluid region ends at its band, which is no surface. A row's
+ * cells next to each other in memory (same periodic image) are read as one run of slots.
+ * Compiled for AVX2 too (VRES_CLONES), with the same bits. */
+VRES_HD VRES_CLONES static inline void vres_couple_sigma_vec(const vres_donor *D, const double x[3], double hs,
+                                                             double S[3])
 {
     const vres_cells *g = &D->cells;
     int c[3];
@@ -381,7 +437,9 @@ VRES_HD static inline void vres_couple_sigma_vec(const vres_donor *D, const doub
     int R[3];
     for (int a = 0; a < 3; a++) R[a] = g->dim == 2 && a == 1 ? 0 : (int)ceil(2.0 * hs / g->cell[a]);
     for (int oz = -R[2]; oz <= R[2]; oz++)
-        for (int oy = -R[1]; oy <= R[1]; oy++)
+        for (int oy = -R[1]; oy <= R[1]; oy++) {
+            size_t rb = 0, re = 0; /* the run being gathered: slots [rb, re) at image rs */
+            double rs[3] = {0, 0, 0};
             for (int ox = -R[0]; ox <= R[0]; ox++) {
                 int q[3] = {c[0] + ox, c[1] + oy, c[2] + oz}, ok = 1;
                 double sh[3] = {0, 0, 0};
@@ -389,20 +447,17 @@ VRES_HD static inline void vres_couple_sigma_vec(const vres_donor *D, const doub
                     ok = q[a] >= -g->nc[a] && q[a] < 2 * g->nc[a] && vres_cells_wrap_axis(g, a, &q[a], &sh[a]);
                 if (!ok) continue;
                 const size_t cell = ((size_t)q[2] * (size_t)g->nc[1] + (size_t)q[1]) * (size_t)g->nc[0] + (size_t)q[0];
-                for (size_t b = g->begin[cell]; b < g->begin[cell + 1]; b++) {
-                    const int t = D->type[b], wall = vres_type_is_wall(t);
-                    if (!wall && !vres_type_acts_fluid(t)) continue;
-                    double d[3], r2 = 0;
-                    for (int a = 0; a < 3; a++) {
-                        d[a] = g->dim == 2 && a == 1 ? 0.0 : D->pos[3 * b + a] + sh[a] - x[a];
-                        r2 += d[a] * d[a];
-                    }
-                    if (r2 >= r2max) continue;
-                    const double V = D->mass[b] / (wall ? D->o.rho0 : (double)D->rho[b]);
-                    const double w = V * -vres_wendland_f(k, sqrt(r2));
-                    for (int a = 0; a < 3; a++) S[a] += w * d[a];
+                const size_t cb = g->begin[cell], ce = g->begin[cell + 1];
+                if (cb == ce) continue;
+                if (re > rb && re == cb && rs[0] == sh[0] && rs[1] == sh[1] && rs[2] == sh[2]) {
+                    re = ce; /* the next slots in memory, same image: one run */
+                    continue;
                 }
+                vres_couple_sigma_run(D, rb, re, rs, x, k, r2max, S);
+                rb = cb, re = ce, rs[0] = sh[0], rs[1] = sh[1], rs[2] = sh[2];
             }
+            vres_couple_sigma_run(D, rb, re, rs, x, k, r2max, S);
+        }
 }
 
 /* sigma (surface.h) at x (m) over donor D with smoothing length hs (m) along the unit vector n:

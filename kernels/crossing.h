@@ -102,6 +102,21 @@ VRES_HD static inline void vres_cross_piece(vres_cross *X, int p1, int p2, doubl
     for (int a = 0; a < 3; a++) x[a] = X->c[a] + s1 * X->t1[a] + s2 * X->t2[a];
 }
 
+/* 0 when donor fluid particle at d = x_b - c (m; d[1] = 0 in 2D) adds exactly 0 to X's count
+ * (vres_cross_term): outside X's piece along the tangents, or 1.5 dp_b or more from the segment's
+ * plane (its term needs |depth| < dp_b/2 now or at the step's start, and a step moves a particle
+ * less than dp_b/2, the reach's bound above: twice that still leaves both shares of its slab
+ * beyond the plane 0, or both 1); 1 otherwise. Without a branch: a gather's pass tests every
+ * donor so and forms the few terms that may count. */
+VRES_HD static inline int vres_cross_near(const vres_cross *X, const double d[3])
+{
+    const double u1 = d[0] * X->t1[0] + d[1] * X->t1[1] + d[2] * X->t1[2];
+    const double u2 = X->dim == 2 ? 0.0 : d[0] * X->t2[0] + d[1] * X->t2[1] + d[2] * X->t2[2];
+    const double sn = d[0] * X->n[0] + d[1] * X->n[1] + d[2] * X->n[2];
+    return (u1 >= X->lo1) & (u1 < X->hi1) & ((X->dim == 2) | ((u2 >= X->lo2) & (u2 < X->hi2))) &
+           (fabs(sn) < 1.5 * X->dpb);
+}
+
 /* The mass (kg) that donor fluid particle b of mass mb (kg), at d = x_b - c (m; the image's when
  * periodic, d[1] = 0 in 2D) now, carried across X's segment over the step, negative for what
  * crossed out; 0 unless X's piece holds it along the tangents (tested before the step's

@@ -389,6 +389,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         double vb[VRES_LIU_LIST];   /* V = m / den (m^3) */
     } Q;
     vres_liu_rows S;
+    uint8_t xn[VRES_LIU_LIST]; /* [0, nx): with X, the kept fluid donors (index into Q) whose crossing term may not be 0 */
     int c = 0, kc = 0; /* the next range, or the next cache entry */
     size_t b0 = m ? nb[0].begin : 0;
     while (K ? kc < K->n : c < m) {
@@ -458,7 +459,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         }
         /* 5: D and the nearest distance in donor order, and each kept fluid donor's basis column
            and test row (and fields) */
-        int nf = 0;
+        int nf = 0, nx = 0;
         for (int j = 0; j < nk; j++) {
             const int i0 = L.kept[j];
             const size_t b = lb[i0];
@@ -467,7 +468,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             const double r2 = Q.r2[j];
             d2min = r2 < d2min ? r2 : d2min;
             const double d[3] = {L.d[0][i0], DIM == 3 ? L.d[1][i0] : 0.0, L.d[2][i0]};
-            if (X) cm += vres_cross_term(X, b, d, Q.mb[j]);
+            if (X) xn[nx] = (uint8_t)j, nx += vres_cross_near(X, d); /* the crossing count's few */
             /* column e = [1, d/h (, d_i d_j / h^2)]; test row tr = V [W, h grad_a W (, h^2 grad_a grad_a W)]
                = V [W, -F h^2 (d/h) (, h^2 F delta_ij + h^2 (dF/dr) d_i d_j / r)] */
             double *e = S.e[nf], *tr = S.tr[nf];
@@ -492,6 +493,11 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             nf++;
         }
         nfluid += nf;
+        for (int q = 0; q < nx; q++) { /* their terms in donor order: the others' are exactly 0 */
+            const int j = xn[q], i0 = L.kept[j];
+            const double d[3] = {L.d[0][i0], DIM == 3 ? L.d[1][i0] : 0.0, L.d[2][i0]};
+            cm += vres_cross_term(X, lb[i0], d, Q.mb[j]);
+        }
         vres_liu_sum_rows(A, Rt, &S, nf, N, P); /* 6 */
     }
     for (int i = 0; i < N; i++) {

@@ -569,7 +569,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
     track_move(C, t); /* the boxes that follow a body where it is at the new time */
     if (track_inside(C, t) != 0) return -1;
     /* the crossing count reads the step's start positions: only then must they follow the sort */
-    if (sort_domains(C, set, C->flux != VRES_FLUX_INTERP, 0) != 0) return -1;
+    if (sort_domains(C, set, C->flux != VRES_FLUX_INTERP ? VRES_CARRY_POS : VRES_CARRY_NONE, 0) != 0) return -1;
     double tf = vres_run_wall_now();
     refresh_donors(C, set);
     /* the segments see every domain at the new time, before any type changes */

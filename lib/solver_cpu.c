@@ -73,7 +73,7 @@ static int cpu_sort(vres_backend *b, int carry)
     vres_cells_build(&x->cells, d->pos, d->n);
     if (vres_cells_reorder(&x->cells, d) != 0) return -1;
     for (int k = 0; k < x->nwork; k++)
-        if (x->work[k].follow == VRES_WORK_CARRY || (carry && x->work[k].follow == VRES_WORK_START))
+        if (x->work[k].follow == VRES_WORK_CARRY || vres_work_carried(&x->work[k], carry))
             vres_cells_gather(&x->cells, *x->work[k].p, x->work[k].elem);
     return 0;
 }

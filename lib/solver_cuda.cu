@@ -323,7 +323,7 @@ static int cu_sort(vres_backend *b, int carry)
         return -1;
     gather_fields(x, n, &x->dev);
     for (int w = 0; w < x->nwork; w++)
-        if (x->work[w].follow == VRES_WORK_CARRY || (carry && x->work[w].follow == VRES_WORK_START))
+        if (x->work[w].follow == VRES_WORK_CARRY || vres_work_carried(&x->work[w], carry))
             gather_bytes(x, n, x->work[w].p, x->work[w].elem, x->hc.perm);
     x->sorted_n = n;
     return x->failed ? -1 : 0;

@@ -13,6 +13,7 @@
 #include "../kernels/inout.h"
 #include "../kernels/sph.h"
 #include "../kernels/sph_pick.h"
+#include "field.h"
 #include "solver_motion.h"
 #include "store.h"
 
@@ -94,13 +95,26 @@ typedef struct vres_work {
     int follow;           /* VRES_WORK_* */
     int from;             /* the field (VRES_FIELD_*) whose value a particle's entry starts from; -1: zero */
 } vres_work;
+
+/* What a sort carries of the step's start (the sort's carry argument). */
+#define VRES_CARRY_NONE 0  /* nothing: at a step's start */
+#define VRES_CARRY_START 1 /* every step-start array: mid-step, where the corrector reads them */
+#define VRES_CARRY_POS 2   /* the step-start positions only: after a step, for the crossing flux */
+
+/* 1 when a sort with carry (VRES_CARRY_*) gathers the step-start array w. */
+static inline int vres_work_carried(const vres_work *w, int carry)
+{
+    return w->follow == VRES_WORK_START &&
+           (carry == VRES_CARRY_START || (carry == VRES_CARRY_POS && w->from == VRES_FIELD_POS));
+}
 typedef struct vres_backend {
     const char *name;     /* what the module list prints: "cpu-openmp(2 threads)", "cuda(NAME)" */
     void *ctx;            /* the backend's own state */
     size_t n;             /* particles it holds now */
 
-    /* Sort the particles by cell for their current positions; with carry 1 (mid-step) the
-     * step-start arrays follow. 0, or -1 after printing why. */
+    /* Sort the particles by cell for their current positions; with carry VRES_CARRY_START
+     * (mid-step) the step-start arrays follow, with VRES_CARRY_POS only the step-start positions
+     * (vres_work_carried). 0, or -1 after printing why. */
     int (*sort)(struct vres_backend *b, int carry);
     /* Keep the current positions, velocities and densities as the step's start. */
     void (*save_start)(struct vres_backend *b);
