@@ -244,6 +244,47 @@ START_TEST(test_crossing_fused)
 }
 END_TEST
 
+/* vres_cross_near, the gather's test of which donors' crossing terms to form (crossing.h): a
+ * donor it passes over adds exactly 0. Random segments (2D and 3D, random normals, a moving
+ * segment too) against donors scattered within 2h of the centre, each displaced over the step
+ * by up to 0.95 dp_b in any direction (twice the bound a run keeps below): every donor the test
+ * rejects has a term of exactly +0, and some it keeps carry mass. */
+START_TEST(test_cross_near)
+{
+    uint64_t seed = 99;
+#define RND() (seed = seed * 6364136223846793005ULL + 1442695040888963407ULL, (double)(seed >> 11) / 9007199254740992.0)
+    const double dpb = 0.02, h = 1.5 * sqrt(2.0) * dpb, period[3] = {0, 0, 0};
+    double pos[3], pos0[3];
+    int rejected = 0, counted = 0;
+    for (int dim = 2; dim <= 3; dim++)
+        for (int s = 0; s < 200; s++) {
+            double n[3] = {RND() - 0.5, dim == 3 ? RND() - 0.5 : 0.0, RND() - 0.5};
+            const double ln = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int a = 0; a < 3; a++) n[a] /= ln;
+            const double c[3] = {0.5, dim == 3 ? 0.5 : 0.0, 0.5}, vbox[3] = {s % 2 ? 0.3 : 0.0, 0, 0}, dt = 0.01;
+            const double area = dim == 2 ? 0.01 : 1e-4;
+            vres_cross X;
+            vres_cross_init(&X, pos, pos0, c, n, area, vbox, dt, dpb, h, period, dim);
+            for (int q = 0; q < 200; q++) {
+                double d[3];
+                for (int a = 0; a < 3; a++) d[a] = dim == 2 && a == 1 ? 0.0 : (2 * RND() - 1) * 2 * h;
+                double u[3], lu = 0;
+                for (int a = 0; a < 3; a++) u[a] = dim == 2 && a == 1 ? 0.0 : RND() - 0.5, lu += u[a] * u[a];
+                const double step = 0.95 * dpb * RND() - fabs(vbox[0]) * dt; /* with the segment's own motion: < 0.95 dp_b */
+                for (int a = 0; a < 3; a++) pos[a] = c[a] + d[a], pos0[a] = pos[a] - (step > 0 ? step : 0) * u[a] / sqrt(lu);
+                const double t = vres_cross_term(&X, 0, d, 1.0);
+                if (!vres_cross_near(&X, d)) {
+                    ck_assert_msg(t == 0 && !signbit(t), "dim %d: a rejected donor at (%g, %g, %g) adds %g", dim, d[0], d[1],
+                                  d[2], t);
+                    rejected++;
+                } else counted += t != 0;
+            }
+        }
+#undef RND
+    ck_assert_msg(rejected > 10000 && counted > 100, "rejected %d, counted %d", rejected, counted);
+}
+END_TEST
+
 /* The crossing flux on a periodic axis: a lattice periodic in x over [0, 1) m moving along +x by
  * 0.4 mm a step and wrapped, re-sorted after every step as a run's exchange does, through segments at x = 0.03 m,
  * next to the wrap. A particle that wrapped in the step moved a step, not a period: after K
@@ -403,6 +444,7 @@ int main(void)
     tcase_add_test(tc, test_crossing);
     tcase_add_test(tc, test_crossing_periodic);
     tcase_add_test(tc, test_crossing_fused);
+    tcase_add_test(tc, test_cross_near);
     tcase_add_test(tc, test_classify);
     tcase_add_test(tc, test_buffers);
     tcase_add_test(tc, test_birth);
