@@ -74,13 +74,13 @@ static void wall_motion(const vres_store *s, run_motion *rm, double t)
 
 /* ---- the phases of a step: one backend operation over every domain ---- */
 
-/* Sort every domain by cell (with carry, mid-step: the step start follows; with sorted 1, at a
- * step's start, not: nothing moved since the last exchange's sort), then, at a step's start, let
- * the coupling interpolate the buffers from the donors' sorted fluid (where the last exchange
- * has not just done it). Mid-step the buffers keep the values of the step's start, as
- * DualSPHysics 5.4 interpolates once per step: interpolating them again there cost a third of
- * the coupled Taylor-Green run's time loop and did not make it more accurate (vres-run(1)).
- * 0, or -1 after printing why. */
+/* Sort every domain by cell (carry a VRES_CARRY_*: mid-step VRES_CARRY_START, the step start
+ * follows; with sorted 1, at a step's start, not: nothing moved since the last exchange's
+ * sort), then, at a step's start, let the coupling interpolate the buffers from the donors'
+ * sorted fluid (where the last exchange has not just done it). Mid-step the buffers keep the
+ * values of the step's start, as DualSPHysics 5.4 interpolates once per step: interpolating them
+ * again there cost a third of the coupled Taylor-Green run's time loop and did not make it more
+ * accurate (vres-run(1)). 0, or -1 after printing why. */
 static int sort_all(run_set *set, const run_cfg *c, int carry, int sorted, double t)
 {
     double t0 = vres_prof_now();
@@ -189,7 +189,7 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
         return vres_run_stop_unstable(s, set, c, r, f->dir, k, badmid, step + 1, t + 0.5 * dt, t, step);
     /* particles that left the domain in the predictor are sorted after every cell, where no
        neighbour sees them; the corrector decides (they are excluded after the step) */
-    if (sort_all(set, c, 1, 0, t + 0.5 * dt) != 0) return VRES_RUN_FAIL;
+    if (sort_all(set, c, VRES_CARRY_START, 0, t + 0.5 * dt) != 0) return VRES_RUN_FAIL;
     forces_all(set, c, c->shift != 0, &kmin, &amax, &visc);
     double t0 = vres_prof_now();
     if (c->shift && vres_couple_shift(set) != 0) return VRES_RUN_FAIL;
@@ -240,7 +240,7 @@ static int check_start(vres_store *s, run_set *set, const run_cfg *c, run_motion
     for (size_t k = 0; k < set->n; k++) {
         vres_backend *b = &set->b[k];
         b->move_walls(b, m->mv); /* their velocity at the start, which the store may not hold */
-        b->sort(b, 0);
+        b->sort(b, VRES_CARRY_NONE);
         size_t nout, bad = b->check(b, &nout);
         if (bad == (size_t)-1 && !nout) continue;
         vres_domain *d = &s->dom[set->dom[k].index];
@@ -283,7 +283,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     while (rc == VRES_RUN_OK && t < c->tmax * (1 - 1e-12)) {
         double amax, visc;
         size_t kmin;
-        if (sort_all(set, c, 0, sorted, t) != 0) { rc = VRES_RUN_FAIL; break; }
+        if (sort_all(set, c, VRES_CARRY_NONE, sorted, t) != 0) { rc = VRES_RUN_FAIL; break; }
         save_start_all(set);
         vres_floats_begin(m.fl);
         dt = forces_all(set, c, c->verlet && c->shift != 0, &kmin, &amax, &visc);

@@ -447,8 +447,8 @@ static int uncoupled(const run_set *set)
     return -1;
 }
 
-/* Sort every domain by cell (with carry, the step's start follows: the crossing flux reads it);
- * with stale_only 1 only those whose particles were deleted or created since their last sort
+/* Sort every domain by cell, carrying what carry (VRES_CARRY_*) names of the step's start (the
+ * crossing flux reads its positions); with stale_only 1 only those whose particles were deleted or created since their last sort
  * (the others' order and cells would come out as they are). 0 or -1. */
 static int sort_domains(vres_couple *C, run_set *set, int carry, int stale_only)
 {
@@ -489,7 +489,7 @@ static int buffers(vres_couple *C, run_set *set, int del)
         C->part.compact += vres_run_wall_now() - t0;
         if (rc != 0) return -1;
     }
-    return del ? sort_domains(C, set, 0, 1) : 0;
+    return del ? sort_domains(C, set, VRES_CARRY_NONE, 1) : 0;
 }
 
 int vres_couple_buffers(run_set *set, const run_cfg *c, double t)
@@ -552,7 +552,7 @@ static int zones_exchange(vres_couple *C, run_set *set, double t, double dt)
     double t0 = vres_run_wall_now();
     vres_backend *b = &set->b[0];
     vres_inout_time(C->io, t);
-    if (b->sort(b, 0) != 0 || vres_inout_exchange(C->io, b, dt, &C->next_id) != 0 || b->sort(b, 0) != 0) return -1;
+    if (b->sort(b, VRES_CARRY_NONE) != 0 || vres_inout_exchange(C->io, b, dt, &C->next_id) != 0 || b->sort(b, VRES_CARRY_NONE) != 0) return -1;
     vres_inout_impose(C->io, b);
     C->fresh = 1;
     C->wall += vres_run_wall_now() - t0;
@@ -582,7 +582,7 @@ int vres_couple_exchange(run_set *set, const run_cfg *c, double t, double dt)
         if (C->flux == VRES_FLUX_BALANCED || C->flux == VRES_FLUX_CAPPED) balance(cd, C->ndom, C->flux == VRES_FLUX_CAPPED);
     }
     C->part.flux += vres_run_wall_now() - tf;
-    if (classify_domains(C, set, 1) != 0 || sort_domains(C, set, 0, 1) != 0 || buffers(C, set, 1) != 0) return -1;
+    if (classify_domains(C, set, 1) != 0 || sort_domains(C, set, VRES_CARRY_NONE, 1) != 0 || buffers(C, set, 1) != 0) return -1;
     C->fresh = 1;
     C->wall += vres_run_wall_now() - t0;
     /* the root's zones after the domains' exchange: they lie clear of every box and band
@@ -596,14 +596,14 @@ int vres_couple_start(run_set *set, const run_cfg *c)
     vres_couple *C = set->couple;
     if (!C) return uncoupled(set);
     const vres_couple_parts keep = C->part; /* the start is not in wall: nor in its parts */
-    if (C->ndom > 1 && (sort_domains(C, set, 0, 0) != 0 || classify_domains(C, set, 0) != 0 ||
-                        sort_domains(C, set, 0, 1) != 0 || buffers(C, set, 1) != 0))
+    if (C->ndom > 1 && (sort_domains(C, set, VRES_CARRY_NONE, 0) != 0 || classify_domains(C, set, 0) != 0 ||
+                        sort_domains(C, set, VRES_CARRY_NONE, 1) != 0 || buffers(C, set, 1) != 0))
         return -1;
     C->part = keep;
     if (C->io) { /* the root's zones (clear of the boxes): their fill and state */
         vres_backend *b = &set->b[0];
         vres_inout_time(C->io, C->t0);
-        if (b->sort(b, 0) != 0 || vres_inout_start(C->io, b, &C->next_id) != 0) return -1;
+        if (b->sort(b, VRES_CARRY_NONE) != 0 || vres_inout_start(C->io, b, &C->next_id) != 0) return -1;
     }
     C->fresh = 1;
     return 0;

@@ -347,7 +347,7 @@ static int fill(vres_inout *Z, inout_zone *zn, vres_backend *b, uint64_t *next_i
         }
         vres_segments S = {p, zn->normal, zn->area, NULL, NULL, mass, zn->rho, zn->vel, state, VRES_FLUX_INTERP, NULL, NULL};
         rc = vres_couple_births(b, &S, ns, NULL, Z->dp, Z->m, VRES_INLET, Z->mk, next_id, &zn->L);
-        if (rc == 0) rc = b->sort(b, 0);
+        if (rc == 0) rc = b->sort(b, VRES_CARRY_NONE);
     }
     free(p), free(mass), free(state);
     return rc;
@@ -355,7 +355,7 @@ static int fill(vres_inout *Z, inout_zone *zn, vres_backend *b, uint64_t *next_i
 
 int vres_inout_start(vres_inout *Z, vres_backend *b, uint64_t *next_id)
 {
-    if (classify(Z, b, 1) != 0 || b->sort(b, 0) != 0) return -1;
+    if (classify(Z, b, 1) != 0 || b->sort(b, VRES_CARRY_NONE) != 0) return -1;
     for (int k = 0; k < Z->nz; k++)
         if (fill(Z, &Z->zone[k], b, next_id) != 0) return -1;
     vres_inout_impose(Z, b);

@@ -107,6 +107,7 @@ static inline int vres_work_carried(const vres_work *w, int carry)
     return w->follow == VRES_WORK_START &&
            (carry == VRES_CARRY_START || (carry == VRES_CARRY_POS && w->from == VRES_FIELD_POS));
 }
+
 typedef struct vres_backend {
     const char *name;     /* what the module list prints: "cpu-openmp(2 threads)", "cuda(NAME)" */
     void *ctx;            /* the backend's own state */
