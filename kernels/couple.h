@@ -327,7 +327,7 @@ VRES_HD static inline void vres_couple_segment_one(size_t s, const vres_donor *d
                         D->cells.dim);
     const int fused = cross && X.np == 1;
     vres_liu_result r = vres_liu_at_x(&D->cells, vres_couple_opts(D, dp), D->pos, D->vel, D->rho, D->mass, D->type, p,
-                                      fused ? &X : NULL, vres_couple_cache(D, dp, C));
+                                      fused ? &X : NULL, NULL, vres_couple_cache(D, dp, C));
     const double crossed = !cross ? 0.0 : fused ? X.m : vres_couple_cross_sum(D, &X);
     S.rho[s] = (float)r.rho;
     for (int a = 0; a < 3; a++) S.vel[3 * s + a] = (float)r.v[a];
@@ -472,14 +472,16 @@ VRES_HD static inline double vres_couple_sigma(const vres_donor *D, const double
 /* The density (kg/m^3) buffer particle at x (m) of a domain with smoothing length h (m) takes for
  * the interpolation r from donor D: r->rho, with the pressure excess of a free surface above it
  * turned from D's lattice's into its own (surface.h; the depth from sigma over D with the larger
- * of the two smoothing lengths, which reaches deeper). The excess scales with the pressure
+ * of the two smoothing lengths, which reaches deeper: with sg, else NULL, the sum
+ * vres_couple_sigma_vec gives with D's own, which the interpolation's pass made where that is
+ * the larger). The excess scales with the pressure
  * gradient and the depth is taken along it: G = |grad p| = c^2 |grad rho| from the corrected
  * interpolation's gradient rows (c^2 = dp/drho of Tait's equation at r->rho), the unit vector
  * grad p / G pointing into the water; a point without pressure gradient (a free jet) gets
  * nothing. Where the interpolation gave Shepard's value (no gradient) gravity's rho0 g and its
  * direction stand in. */
 VRES_HD static inline double vres_couple_surface(const vres_donor *D, const double x[3], double h,
-                                                 const vres_liu_result *r)
+                                                 const vres_liu_result *r, const double *sg)
 {
     if (D->sf.g <= 0) return r->rho;
     const double hd = D->o.k.h, hs = h > hd ? h : hd;
@@ -491,7 +493,9 @@ VRES_HD static inline double vres_couple_surface(const vres_donor *D, const doub
         for (int a = 0; a < 3; a++) sf.down[a] = r->grad[a] / gr;
         sf.g = c2 * gr / sf.rho0; /* G / rho0 (m/s^2): vres_surface_match's rho0 g is G */
     }
-    const double q = vres_surface_depth(vres_couple_sigma(D, x, hs, sf.down), D->cells.dim);
+    const double sig = sg ? hs * (sg[0] * sf.down[0] + sg[1] * sf.down[1] + sg[2] * sf.down[2])
+                          : vres_couple_sigma(D, x, hs, sf.down);
+    const double q = vres_surface_depth(sig, D->cells.dim);
     return vres_surface_match(&sf, r->rho, q < 0 ? -1.0 : q * hs, h, hd);
 }
 
@@ -508,13 +512,17 @@ VRES_HD static inline void vres_couple_buffer_one(size_t i, const vres_region *r
     int j;
     if (vres_region_classify(reg, nreg, k, &pos[3 * i], dim, &j) != VRES_REGION_BUFFER || j < 0) return;
     const vres_donor *D = &donors[j];
+    /* sigma's sum in the interpolation's pass where its kernel is the donor's (h <= the donor's) */
+    double sg[3] = {0, 0, 0};
+    const int fuse = D->sf.g > 0 && donors[k].o.k.h <= D->o.k.h;
     vres_liu_result r = vres_liu_at_x(&D->cells, vres_couple_opts(D, donors[k].dp), D->pos, D->vel, D->rho, D->mass,
-                                      D->type, &pos[3 * i], NULL, vres_couple_cache(D, donors[k].dp, C));
+                                      D->type, &pos[3 * i], NULL, fuse ? sg : NULL,
+                                      vres_couple_cache(D, donors[k].dp, C));
     if (r.method == VRES_LIU_NOSUPPORT) {
         event[i] = VRES_EV_NOSUPPORT;
         return;
     }
-    rho[i] = (float)vres_couple_surface(D, &pos[3 * i], donors[k].o.k.h, &r);
+    rho[i] = (float)vres_couple_surface(D, &pos[3 * i], donors[k].o.k.h, &r, fuse ? sg : NULL);
     for (int a = 0; a < 3; a++) vel[3 * i + a] = (float)r.v[a];
 }
 

@@ -272,11 +272,12 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_sum_rows(double A[VRES_LIU
     }
 }
 
-/* Room of a vres_liu_cache: the donor fluid and walls of one cell's 3^dim neighbourhood (about
+/* Room of a vres_liu_cache: the donor fluid and walls (and buffer and inlet) of one cell's 3^dim neighbourhood (about
  * 100 in 2D, 1000 in 3D near a flat interface); a neighbourhood with more is not cached. */
 #define VRES_LIU_CACHE 1024
 
-/* A thread's copy of the donor fluid and walls around one donor cell, in slot order, for a run
+/* A thread's copy of the donor fluid and walls around one donor cell (with buffer and inlet
+ * particles too for a gather with sg, which reads them), in slot order, for a run
  * of points in that cell (a receiving domain's buffer particles or segments in order share
  * their donor cell: about 17 of a box's buffer particles per parent cell at dpratio 2): the
  * gather then reads their positions side by side instead of every slot of the neighbourhood
@@ -286,6 +287,7 @@ typedef struct vres_liu_cache {
     const vres_cells *g;            /* the donor cells it was filled from; NULL: empty */
     int cx[3];                      /* the cell whose neighbourhood it holds */
     int n;                          /* entries; -1: the neighbourhood has more than VRES_LIU_CACHE */
+    int all;                        /* 1: buffer and inlet particles held too */
     double x[3][VRES_LIU_CACHE];    /* position plus the cell range's periodic shift (m; y unset in 2D) */
     size_t b[VRES_LIU_CACHE];       /* slot */
 } vres_liu_cache;
@@ -295,16 +297,18 @@ VRES_HD static inline void vres_liu_cache_init(vres_liu_cache *C)
 {
     C->g = NULL;
     C->n = 0;
+    C->all = 0;
 }
 
-/* C holding the donor fluid and walls of the neighbourhood of cell cx of g (positions pos, m;
- * types type), refilled when it held another; 1, or 0 when they do not fit (then the caller
- * reads the cells). */
+/* C holding the donor fluid and walls (with all 1, buffer and inlet particles too) of the
+ * neighbourhood of cell cx of g (positions pos, m; types type), refilled when it held another;
+ * 1, or 0 when they do not fit (then the caller reads the cells). */
 VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells *g, const int cx[3],
-                                             const double *pos, const uint8_t *type)
+                                             const double *pos, const uint8_t *type, int all)
 {
-    if (C->g == g && C->cx[0] == cx[0] && C->cx[1] == cx[1] && C->cx[2] == cx[2]) return C->n >= 0;
+    if (C->g == g && C->all == all && C->cx[0] == cx[0] && C->cx[1] == cx[1] && C->cx[2] == cx[2]) return C->n >= 0;
     C->g = g;
+    C->all = all;
     C->cx[0] = cx[0], C->cx[1] = cx[1], C->cx[2] = cx[2];
     vres_cell_range nb[27];
     const int m = vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL);
@@ -312,7 +316,7 @@ VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells
     for (int c = 0; c < m; c++)
         for (size_t b = nb[c].begin; b < nb[c].end; b++) {
             const int t = type[b];
-            if (!vres_type_is_fluid(t) && !vres_type_is_wall(t)) continue;
+            if (!vres_type_is_fluid(t) && !vres_type_is_wall(t) && !(all && vres_type_acts_fluid(t))) continue;
             if (n == VRES_LIU_CACHE) {
                 C->n = -1;
                 return 0;
@@ -348,8 +352,8 @@ VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
                                              const double *pos, const float *vel, const float *rho,
                                              const double *mass, const uint8_t *type, const double x[3],
-                                             vres_cross *X, vres_liu_cache *C, const int N, const int DIM,
-                                             const int fresh)
+                                             vres_cross *X, double *sg, vres_liu_cache *C, const int N,
+                                             const int DIM, const int fresh)
 {
     vres_cell_range nb[27];
     int m = 0, cx[3];
@@ -357,7 +361,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
     /* the cached neighbourhood where C holds it (or can), else the cells: a row's three cells
        side by side in memory are one range (the same slots in the same order as
        vres_cells_neighbours gives them) */
-    const vres_liu_cache *K = C && located && vres_liu_cache_for(C, g, cx, pos, type) ? C : NULL;
+    const vres_liu_cache *K = C && located && vres_liu_cache_for(C, g, cx, pos, type, sg != NULL) ? C : NULL;
     if (!K && located) m = vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL);
     const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
@@ -430,18 +434,19 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
         }
         /* 2: the candidates inside the support (about a third of them), then of those the donor
-           fluid and walls, each pass without a branch; 3: their masses and densities */
+           fluid and walls (with sg, buffer and inlet particles too), each pass without a branch;
+           3: their masses and densities */
         const int ns = vres_keep_within(L.r2, nc, -1.0, fourh2, L.kept);
         int nk = 0;
         for (int i = 0; i < ns; i++) {
             const int j = L.kept[i]; /* read before kept[nk], nk <= i, is written */
             const size_t b = lb[j];
-            const int t = type[b], fluid = vres_type_is_fluid(t), wall = vres_type_is_wall(t);
+            const int t = type[b], wall = vres_type_is_wall(t);
             L.kept[nk] = (uint8_t)j;
             Q.r2[nk] = L.r2[j];
             Q.mb[nk] = mass[b];
-            Q.den[nk] = fluid ? (double)rho[b] : rho0;
-            nk += fluid || wall;
+            Q.den[nk] = wall ? rho0 : (double)rho[b];
+            nk += wall || vres_type_is_fluid(t) || (sg && vres_type_acts_fluid(t));
         }
         /* 4: their kernel terms */
 #pragma omp simd
@@ -457,14 +462,22 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
                 Q.hg[j] = r > 0 ? hgr : 0.0;
             }
         }
-        /* 5: D and the nearest distance in donor order, and each kept fluid donor's basis column
-           and test row (and fields) */
+        /* 5: sg's terms, D and the nearest distance in donor order, and each kept fluid donor's
+           basis column and test row (and fields) */
         int nf = 0, nx = 0;
         for (int j = 0; j < nk; j++) {
             const int i0 = L.kept[j];
             const size_t b = lb[i0];
+            const int t = type[b];
+            if (sg) { /* vres_couple_sigma_vec's term, the same operations */
+                const double w = Q.vb[j] * Q.negf[j];
+                sg[0] += w * L.d[0][i0];
+                if (DIM == 3) sg[1] += w * L.d[1][i0];
+                sg[2] += w * L.d[2][i0];
+                if (!vres_type_is_fluid(t) && !vres_type_is_wall(t)) continue; /* buffer, inlet: sg only */
+            }
             div += Q.dv[j];
-            if (!vres_type_is_fluid(type[b])) continue; /* a wall: D only */
+            if (!vres_type_is_fluid(t)) continue; /* a wall: D only */
             const double r2 = Q.r2[j];
             d2min = r2 < d2min ? r2 : d2min;
             const double d[3] = {L.d[0][i0], DIM == 3 ? L.d[1][i0] : 0.0, L.d[2][i0]};
@@ -515,20 +528,24 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
  * count over the donors inside the support into X->m (kg): every particle that can add to it is
  * one (a step's motion stays below dp_b / 2, crossing.h), so it is vres_couple_crossing's sum, the
  * same terms in the same order. With C (else NULL), the donors are read from that cache of the
- * point's donor cell (filled when it holds another), the same sums. With fresh 1 the sums start
- * empty and s's are not read (only s->n, the unknowns, vres_liu_size, need be set). */
+ * point's donor cell (filled when it holds another), the same sums. With sg (else NULL), the
+ * vector sum behind sigma (couple.h's vres_couple_sigma_vec) with the donor's own kernel is
+ * added into sg[0..2] (1/m; y untouched in 2D) over the donor fluid, buffer, inlet and walls inside
+ * the support, its terms computed and added as that pass does, in the same order: the same sum
+ * to the bit, without a second walk over the cells. With fresh 1 the sums start empty and s's
+ * are not read (only s->n, the unknowns, vres_liu_size, need be set). */
 VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_x(vres_liu_acc *s, const vres_cells *g, vres_liu_opts o,
                                                                const double *pos, const float *vel, const float *rho,
                                                                const double *mass, const uint8_t *type,
-                                                               const double x[3], vres_cross *X, vres_liu_cache *C,
-                                                               const int fresh)
+                                                               const double x[3], vres_cross *X, double *sg,
+                                                               vres_liu_cache *C, const int fresh)
 {
     if (g->dim == 2) {
-        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 6, 2, fresh);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 3, 2, fresh);
+        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 6, 2, fresh);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 3, 2, fresh);
     } else {
-        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 10, 3, fresh);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, C, 4, 3, fresh);
+        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 10, 3, fresh);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 4, 3, fresh);
     }
 }
 
@@ -537,7 +554,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather(vres_liu_acc *s, co
                                            const float *vel, const float *rho, const double *mass,
                                            const uint8_t *type, const double x[3])
 {
-    vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL, NULL, 0);
+    vres_liu_gather_x(s, g, o, pos, vel, rho, mass, type, x, NULL, NULL, NULL, 0);
 }
 
 /* vres_liu_invert's body for n unknowns, a compile-time constant where vres_liu_invert calls it
@@ -764,18 +781,19 @@ VRES_HD static inline vres_liu_result vres_liu_solve(const vres_liu_acc *s, int 
 
 /* Density, velocity, method and gate quantities at x (m) from the donor domain (cells g in
  * slot order, arrays as vres_liu_gather) under the settings o; with X (else NULL), the crossing
- * count of the segment at x into X->m (vres_liu_gather_x); with C (else NULL), through that
+ * count of the segment at x into X->m (vres_liu_gather_x); with sg (else NULL), the sigma sum
+ * with the donor's kernel into sg (vres_liu_gather_x); with C (else NULL), through that
  * thread's cache of the donors (vres_liu_cache). A point outside the donor's cell box has no
  * donors: VRES_LIU_NOSUPPORT. Compiled for AVX2 too (VRES_CLONES: the gather's row updates four
  * doubles at a time), with the same bits. */
 VRES_HD VRES_CLONES static inline vres_liu_result vres_liu_at_x(const vres_cells *g, vres_liu_opts o, const double *pos,
                                                     const float *vel, const float *rho, const double *mass,
                                                     const uint8_t *type, const double x[3], vres_cross *X,
-                                                    vres_liu_cache *C)
+                                                    double *sg, vres_liu_cache *C)
 {
     vres_liu_acc s;
     s.n = vres_liu_size(g->dim, o.order);
-    vres_liu_gather_x(&s, g, o, pos, vel, rho, mass, type, x, X, C, 1); /* s's sums start empty */
+    vres_liu_gather_x(&s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 1); /* s's sums start empty */
     return vres_liu_solve(&s, g->dim, o);
 }
 
@@ -784,7 +802,7 @@ VRES_HD static inline vres_liu_result vres_liu_at(const vres_cells *g, vres_liu_
                                                   const float *vel, const float *rho, const double *mass,
                                                   const uint8_t *type, const double x[3])
 {
-    return vres_liu_at_x(g, o, pos, vel, rho, mass, type, x, NULL, NULL);
+    return vres_liu_at_x(g, o, pos, vel, rho, mass, type, x, NULL, NULL, NULL);
 }
 
 /* 1 where an interface point with result r may accumulate mass (DualSPHysics 5.4's rule): it has

@@ -41,6 +41,7 @@
 
 #include "cells.h"
 #include "device.h"
+#include "keep.h"
 #include "ptype.h"
 #include "sph.h"
 #include "wendland.h"
@@ -52,7 +53,7 @@
  * row-major n x m, both overwritten) by Gaussian elimination with partial pivoting; returns
  * det A (the solutions in B's columns when det != 0). Column j of the solution depends only
  * on column j of B, so adding right-hand sides changes no digit of the others. */
-VRES_HD static inline double vres_mdbc_solve_m(int n, int m, double *A, double *B)
+VRES_HD static inline VRES_FORCE_INLINE double vres_mdbc_solve_m(int n, int m, double *A, double *B)
 {
     double det = 1;
     for (int c = 0; c < n; c++) {
@@ -101,16 +102,188 @@ VRES_HD static inline double vres_mdbc_solve(int n, double *A, double *b)
 #define VRES_MDBC_SHEPARD 1 /* ill-conditioned moment matrix: Shepard sums */
 #define VRES_MDBC_FIRST 2   /* first-order corrected density (and velocity with vorder 1) */
 
+/* Candidates vres_mdbc_ghost looks at per pass over a ghost's neighbour cells (more are done in
+ * turns; a GPU thread holds its pass's arrays in slow local memory, so its passes are short). */
+#ifdef __CUDA_ARCH__
+#define VRES_MDBC_LIST 16
+#else
+#define VRES_MDBC_LIST 64
+#endif
+
+/* VRES_MDBC_V4: GCC's vector of four doubles (host code) for the ghost's sums, a row of the
+ * moment matrix or of the right sides per vector; each operation on it is the same IEEE
+ * operation on each element. */
+#if defined(__GNUC__) && !defined(__CUDACC__)
+#define VRES_MDBC_V4 1
+typedef double vres_mdbc_v4 __attribute__((vector_size(32)));
+#endif
+
+/* The kept fluid donors of one pass of vres_mdbc_ghost, with their kernel terms. */
+typedef struct vres_mdbc_pass {
+    double d[3][VRES_MDBC_LIST]; /* x_g - x_b (m), by candidate */
+    double r2[VRES_MDBC_LIST];   /* |x_g - x_b|^2 (m^2), by candidate */
+    size_t b[VRES_MDBC_LIST];    /* slot, by candidate */
+    uint8_t kept[VRES_MDBC_LIST]; /* [0, nk): the kept donors' candidate indices */
+    double kr2[VRES_MDBC_LIST];  /* r^2 (m^2), by kept donor; then W (m^-dim) */
+    double mb[VRES_MDBC_LIST];   /* mass (kg), by kept donor */
+    double vol[VRES_MDBC_LIST];  /* density (kg/m^3), then the volume m / rho (m^3), by kept donor */
+    double F[VRES_MDBC_LIST];    /* F(r) = W'(r) / r (m^-(dim+2)), by kept donor */
+} vres_mdbc_pass;
+
+/* The ghost's running sums (vres_mdbc_sums): host code keeps the N x N moment matrix as rows of
+ * vectors of four doubles (zero-padded) and the right sides as one vector over the rows (M 1:
+ * the density's column) or a vector per row (M 4: [m W_i, V W_i v]); device code plain arrays
+ * (A row-major N x N, s N x M). */
+typedef struct vres_mdbc_acc {
+#ifdef VRES_MDBC_V4
+    vres_mdbc_v4 A[4]; /* rows of V [W; F x_gb] [1, x_gb] summed (lanes 0..N-1) */
+    vres_mdbc_v4 s[4]; /* M 1: s[0] lane i = sum m W_i; M 4: s[i] = sum [m W_i, V W_i v] */
+#else
+    double A[16];      /* row-major N x N */
+    double s[16];      /* row-major N x M */
+#endif
+} vres_mdbc_acc;
+
+/* Add the nk kept donors of pass P to the ghost's sums S, in donor order: A += V [W; F x_gb]
+ * [1, x_gb] and the right sides m [W; F x_gb] (and V [W; F x_gb] v with M 4) for N = dim + 1
+ * unknowns over the axes ax; the same products and sums, element by element, as one donor at
+ * a time in scalar code, so the same bits. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_mdbc_add(vres_mdbc_acc *S, const vres_mdbc_pass *P, int nk,
+                                                           const int N, const int M, const int ax[3],
+                                                           const float *vel)
+{
+#ifdef VRES_MDBC_V4
+    vres_mdbc_v4 a0 = S->A[0], a1 = S->A[1], a2 = S->A[2], a3 = S->A[3], s0 = S->s[0];
+    for (int k = 0; k < nk; k++) {
+        const int j0 = P->kept[k];
+        const double F = P->F[k], vol = P->vol[k], mb = P->mb[k];
+        const double d0 = P->d[ax[0]][j0], d1 = P->d[ax[1]][j0], d2 = N == 4 ? P->d[ax[2]][j0] : 0.0;
+        const vres_mdbc_v4 col = {1.0, d0, d1, d2}, row = {P->kr2[k], F * d0, F * d1, N == 4 ? F * d2 : 0.0};
+        a0 += (vol * row[0]) * col, a1 += (vol * row[1]) * col, a2 += (vol * row[2]) * col;
+        if (N == 4) a3 += (vol * row[3]) * col;
+        if (M == 1) {
+            s0 += mb * row;
+        } else {
+            const size_t b = P->b[j0];
+            const vres_mdbc_v4 v = {0.0, vel[3 * b], vel[3 * b + 1], vel[3 * b + 2]};
+            for (int i = 0; i < N; i++) {
+                vres_mdbc_v4 w = (vol * row[i]) * v;
+                w[0] = mb * row[i];
+                S->s[i] += w;
+            }
+        }
+    }
+    S->A[0] = a0, S->A[1] = a1, S->A[2] = a2, S->A[3] = a3;
+    if (M == 1) S->s[0] = s0;
+#else
+    for (int k = 0; k < nk; k++) {
+        const int j0 = P->kept[k];
+        const double F = P->F[k], vol = P->vol[k], mb = P->mb[k];
+        double row[4], col[4];
+        row[0] = P->kr2[k], col[0] = 1;
+        for (int i = 1; i < N; i++) row[i] = F * P->d[ax[i - 1]][j0], col[i] = P->d[ax[i - 1]][j0];
+        for (int i = 0; i < N; i++) {
+            S->s[i * M] += mb * row[i];
+            for (int j = 1; j < M; j++) S->s[i * M + j] += vol * row[i] * vel[3 * P->b[j0] + j - 1];
+            for (int j = 0; j < N; j++) S->A[i * N + j] += vol * row[i] * col[j];
+        }
+    }
+#endif
+}
+
+/* The ghost's sums (vres_mdbc_ghost) over the fluid (and buffer) particles within 2h of xg (m):
+ * A (N x N, row-major) and s (N x M) from zero, for N = dim + 1 unknowns over the axes ax and M
+ * 1 (density) or 4 (density and velocity). Each pass over up to VRES_MDBC_LIST candidates of
+ * the neighbour cells (vres_cells_rows: a row's cells side by side in memory are one run, in
+ * the order vres_cells_neighbours gives them) computes their offsets and distances side by
+ * side, keeps those inside the support (keep.h), of them the fluid and buffer particles, their
+ * kernel terms side by side, then adds them in slot order (vres_mdbc_add): the same terms in
+ * the same order as one candidate at a time, so the same sums to the bit. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_mdbc_sums(const vres_cells *g, const double *pos, const float *vel,
+                                                            const float *rho, const double *mass, const uint8_t *type,
+                                                            const vres_sph_consts *C, const double xg[3],
+                                                            const int N, const int M, const int ax[3], double A[16],
+                                                            double s[16])
+{
+    vres_mdbc_acc S;
+    memset(&S, 0, sizeof S);
+    vres_cell_range nb[27];
+    int cx[3], nr = 0;
+    if (vres_cells_locate(g, xg, cx)) nr = vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL);
+    vres_mdbc_pass P;
+    int c = 0;
+    size_t b0 = nr ? nb[0].begin : 0;
+    while (c < nr) {
+        int nc = 0;
+        for (; c < nr; c++, b0 = c < nr ? nb[c].begin : 0) {
+            const double sh[3] = {nb[c].shift[0], nb[c].shift[1], nb[c].shift[2]};
+            size_t e = nb[c].end;
+            if (e - b0 > (size_t)(VRES_MDBC_LIST - nc)) e = b0 + (size_t)(VRES_MDBC_LIST - nc);
+            const int len = (int)(e - b0);
+            const double *pb = pos + 3 * b0;
+            double *c0 = P.d[0] + nc, *c1 = P.d[1] + nc, *c2 = P.d[2] + nc, *cr2 = P.r2 + nc;
+            size_t *cb = P.b + nc;
+#pragma omp simd
+            for (int j = 0; j < len; j++) {
+                const double d0 = xg[0] - (pb[3 * j] + sh[0]), d1 = xg[1] - (pb[3 * j + 1] + sh[1]);
+                const double d2 = xg[2] - (pb[3 * j + 2] + sh[2]);
+                c0[j] = d0, c1[j] = d1, c2[j] = d2;
+                cr2[j] = d0 * d0 + d1 * d1 + d2 * d2;
+                cb[j] = b0 + (size_t)j;
+            }
+            nc += len;
+            b0 = e;
+            if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
+        }
+        const int ns = vres_keep_within(P.r2, nc, -1.0, C->fourh2, P.kept);
+        int nk = 0;
+        for (int i = 0; i < ns; i++) { /* of those inside, the fluid (and buffer) particles */
+            const int j = P.kept[i];   /* read before kept[nk], nk <= i, is written */
+            const size_t b = P.b[j];
+            P.kept[nk] = (uint8_t)j;
+            P.kr2[nk] = P.r2[j];
+            P.mb[nk] = mass[b];
+            P.vol[nk] = (double)rho[b];
+            nk += vres_type_acts_fluid(type[b]);
+        }
+        /* the run's kernel, as DualSPHysics' mDBC (GetKernel_WabFac of the case's kernel) */
+        if (C->kernel == VRES_KERNEL_CUBIC) {
+#pragma omp simd
+            for (int k = 0; k < nk; k++) {
+                const double r = sqrt(P.kr2[k]);
+                P.kr2[k] = vres_cubic_w(C->kc, r), P.F[k] = vres_cubic_f(C->kc, r), P.vol[k] = P.mb[k] / P.vol[k];
+            }
+        } else {
+#pragma omp simd
+            for (int k = 0; k < nk; k++) {
+                const double r = sqrt(P.kr2[k]);
+                P.kr2[k] = vres_wendland_w(C->k, r), P.F[k] = vres_wendland_f(C->k, r), P.vol[k] = P.mb[k] / P.vol[k];
+            }
+        }
+        vres_mdbc_add(&S, &P, nk, N, M, ax, vel);
+    }
+#ifdef VRES_MDBC_V4
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < N; j++) A[i * N + j] = S.A[i][j];
+    for (int i = 0; i < N; i++)
+        for (int j = 0; j < M; j++) s[i * M + j] = M == 1 ? S.s[0][i] : S.s[i][j];
+#else
+    for (int i = 0; i < N * N; i++) A[i] = S.A[i];
+    for (int i = 0; i < N * M; i++) s[i] = S.s[i];
+#endif
+}
+
 /* The fluid seen from the ghost node of wall particle a, whose normal nv (m, not zero) points
  * to the wall face: the density the wall takes (kg/m^3, extrapolated from the ghost back to
  * the wall particle) into *rho_w and, when vel is not NULL, the fluid velocity at the ghost
  * node (m/s; Shepard, or first order with vorder 1 where the density is) into vg. Arrays as
  * for vres_mdbc_one; reads fluid (and buffer) particles only. Returns a VRES_MDBC_* kind
- * (EMPTY: *rho_w = rho0, vg untouched). */
-VRES_HD static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const double *pos, const float *vel,
-                                          const float *rho, const double *mass, const uint8_t *type,
-                                          const float *nv, vres_sph_consts C, int dim, int vorder, double *rho_w,
-                                          double vg[3])
+ * (EMPTY: *rho_w = rho0, vg untouched). Compiled for AVX2 too (VRES_CLONES), with the same
+ * bits. */
+VRES_HD VRES_CLONES static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const double *pos,
+                                                      const float *vel, const float *rho, const double *mass,
+                                                      const uint8_t *type, const float *nv, const vres_sph_consts *C,
+                                                      int dim, int vorder, double *rho_w, double vg[3])
 {
     double xg[3] = {pos[3 * a] + 2.0 * nv[0], pos[3 * a + 1] + 2.0 * nv[1], pos[3 * a + 2] + 2.0 * nv[2]};
     for (int k = 0; k < 3; k++) /* a ghost across a periodic boundary is seen from its image */
@@ -119,31 +292,17 @@ VRES_HD static inline int vres_mdbc_ghost(size_t a, const vres_cells *g, const d
        in 2D); right-hand sides (columns of s): density, then the three velocity components
        when asked */
     const int ax[3] = {0, dim == 2 ? 2 : 1, 2}, n = dim + 1, m = vel ? 4 : 1;
-    double A[16] = {0}, s[16] = {0};
-    vres_cell_range nb[27];
-    int nc = vres_cells_neighbours(g, xg, nb);
-    for (int c = 0; c < nc; c++)
-        for (size_t b = nb[c].begin; b < nb[c].end; b++) {
-            if (!vres_type_acts_fluid(type[b])) continue; /* fluid (and buffer) only */
-            double dx[3] = {xg[0] - (pos[3 * b] + nb[c].shift[0]), xg[1] - (pos[3 * b + 1] + nb[c].shift[1]),
-                            xg[2] - (pos[3 * b + 2] + nb[c].shift[2])};
-            double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-            if (r2 >= C.fourh2) continue;
-            /* the run's kernel, as DualSPHysics' mDBC (GetKernel_WabFac of the case's kernel) */
-            double r = sqrt(r2), W = vres_sph_kernel_w(&C, C.kernel, r), F = vres_sph_kernel_f(&C, C.kernel, r);
-            double mb = mass[b], vol = mb / rho[b];
-            double row[4], col[4];
-            row[0] = W, col[0] = 1;
-            for (int k = 1; k < n; k++) row[k] = F * dx[ax[k - 1]], col[k] = dx[ax[k - 1]];
-            for (int i = 0; i < n; i++) {
-                s[i * m] += mb * row[i];
-                for (int j = 1; j < m; j++) s[i * m + j] += vol * row[i] * vel[3 * b + j - 1];
-                for (int j = 0; j < n; j++) A[i * n + j] += vol * row[i] * col[j];
-            }
-        }
+    double A[16], s[16];
+    if (dim == 2) {
+        if (vel) vres_mdbc_sums(g, pos, vel, rho, mass, type, C, xg, 3, 4, ax, A, s);
+        else vres_mdbc_sums(g, pos, vel, rho, mass, type, C, xg, 3, 1, ax, A, s);
+    } else {
+        if (vel) vres_mdbc_sums(g, pos, vel, rho, mass, type, C, xg, 4, 4, ax, A, s);
+        else vres_mdbc_sums(g, pos, vel, rho, mass, type, C, xg, 4, 1, ax, A, s);
+    }
     double a11 = A[0];
     if (!(a11 > 0)) {
-        *rho_w = C.rho0;
+        *rho_w = C->rho0;
         return VRES_MDBC_EMPTY;
     }
     double shep[4] = {s[0], 0, 0, 0}; /* the Shepard numerators: the first row of s */
@@ -185,7 +344,7 @@ VRES_HD static inline void vres_mdbc_one(size_t a, const vres_cells *g, const do
     const float *nv = &normal[3 * a];
     if (nv[0] == 0 && nv[1] == 0 && nv[2] == 0) return;
     double r, vg[3];
-    vres_mdbc_ghost(a, g, pos, NULL, rho, mass, type, nv, C, dim, 0, &r, vg);
+    vres_mdbc_ghost(a, g, pos, NULL, rho, mass, type, nv, &C, dim, 0, &r, vg);
     rho[a] = (float)vres_mdbc_body_rho(type[a], r, C.rho0);
 }
 
@@ -218,7 +377,7 @@ VRES_HD static inline void vres_mdbc_slip_one(size_t a, const vres_cells *g, con
         return;
     }
     double r, vg[3] = {0, 0, 0};
-    int kind = vres_mdbc_ghost(a, g, pos, slip >= 2 ? vel : NULL, rho, mass, type, nv, C, dim, vorder, &r, vg);
+    int kind = vres_mdbc_ghost(a, g, pos, slip >= 2 ? vel : NULL, rho, mass, type, nv, &C, dim, vorder, &r, vg);
     rho[a] = (float)vres_mdbc_body_rho(type[a], r, C.rho0);
     if (slip < 2) return;
     double vw[3];

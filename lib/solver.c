@@ -127,7 +127,11 @@ static void walls_wrap_all(run_set *set, const vres_motion_state *mv)
     vres_prof_add(&set->prof, VRES_PROF_WALLS, t0);
 }
 
-/* mDBC wall densities (and slip velocities) in every domain for the state the step ends with. */
+/* mDBC wall densities (and slip velocities) in every domain for the state the step ends with,
+ * where that state is written (a snapshot or a checkpoint): the next force evaluation computes
+ * them afresh from the fluid before anything reads them (nothing between a step's end and it
+ * does: the checks, the coupling's sums and the sorts take a wall's density as rho0 or carry
+ * it), so a step whose end is not written leaves them as its corrector found them. */
 static void mdbc_all(run_set *set)
 {
     const double t0 = vres_prof_now();
@@ -173,10 +177,11 @@ static int exchange_all(run_set *set, const run_cfg *c, double t, double dt)
 
 /* One Symplectic step from time t (step `step`) of every domain, with the forces already
  * evaluated at the step's start and dt from them: predictor, mid-step check and sort (and the
- * coupling's interpolation), forces, corrector, mDBC, then the coupling's exchange. Returns
- * VRES_RUN_OK, or the run's exit status after printing why. */
+ * coupling's interpolation), forces, corrector, mDBC (with walls 1: the step's end is written),
+ * then the coupling's exchange. Returns VRES_RUN_OK, or the run's exit status after printing
+ * why. */
 static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_resume *r, run_files *f,
-                           run_motion *m, double t, long step, double dt)
+                           run_motion *m, double t, long step, double dt, int walls)
 {
     double amax, visc;
     size_t kmin, k;
@@ -201,13 +206,15 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
     /* mDBC wall densities follow the fluid, not the continuity equation: set them for the
        state the step ends with (the cells of the predicted state still hold every neighbour
        but those at the kernel's edge, where W vanishes) */
-    mdbc_all(set);
+    if (walls) mdbc_all(set);
     return exchange_all(set, c, t + dt, dt);
 }
 
 /* One Verlet step (an Euler step when euler) from time t of every domain, with the forces
- * already evaluated: the step, the walls, mDBC, then the coupling's exchange. */
-static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, double dt, int euler)
+ * already evaluated: the step, the walls, mDBC (with walls 1: the step's end is written), then
+ * the coupling's exchange. */
+static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, double dt, int euler,
+                       int walls)
 {
     const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) set->b[k].verlet(&set->b[k], dt, euler, c->shift != 0);
@@ -215,8 +222,14 @@ static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion
     vres_prof_add(&set->prof, VRES_PROF_INTEGRATE, t0);
     wall_motion(s, m, t + dt);
     walls_wrap_all(set, m->mv);
-    mdbc_all(set);
+    if (walls) mdbc_all(set);
     return exchange_all(set, c, t + dt, dt);
+}
+
+/* 1 when the state at time t (s) is a snapshot's: an output is due or the run ends there. */
+static int output_due(const run_cfg *c, const run_resume *r, double t)
+{
+    return t >= (r->t0 + r->next_due * c->tout) * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12);
 }
 
 /* Anchor every domain's moving walls where they are at time t (s), a snapshot's: a restart
@@ -293,11 +306,12 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
             rc = vres_run_stop_unstable(s, set, c, r, f->dir, kmin, (size_t)-1, step, t, t, step);
             break;
         }
+        const int walls = output_due(c, r, t + dt) || stop_asked; /* the step's end is written */
         if (c->verlet) {
             int euler = ++verlet_count >= c->verlet_steps;
             if (euler) verlet_count = 0;
-            rc = step_verlet(s, set, c, &m, t, dt, euler);
-        } else rc = step_symplectic(s, set, c, r, f, &m, t, step, dt);
+            rc = step_verlet(s, set, c, &m, t, dt, euler, walls);
+        } else rc = step_symplectic(s, set, c, r, f, &m, t, step, dt, walls);
         if (rc != VRES_RUN_OK) break;
         double nex = r->nexcluded, tp = vres_prof_now();
         rc = vres_run_after_step(s, set, c, r, f, t + dt, step + 1, t, step);
@@ -314,12 +328,13 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         step++;
         vres_run_progress(c, &clk, s->time, t, step, dt, 0);
         tp = vres_prof_now();
-        if (t >= (r->t0 + r->next_due * c->tout) * (1 - 1e-9) || t >= c->tmax * (1 - 1e-12)) {
+        if (output_due(c, r, t)) {
             while (r->t0 + r->next_due * c->tout <= t * (1 + 1e-9)) r->next_due++;
             if (vres_run_output(s, set, c, r, f, &clk, t, step, dt) != 0) rc = VRES_RUN_FAIL;
             else anchor_walls(s, set, &m, t);
         }
         if (rc == VRES_RUN_OK && (stop_asked || (ckpt_s > 0 && vres_run_wall_now() - clk.last_ckpt >= ckpt_s))) {
+            if (!walls) mdbc_all(set); /* the walls of the state written (after the exchange's sort) */
             if (vres_run_checkpoint(s, set, c, r, f, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
             else if (stop_asked) {
                 vres_error("interrupted at t = %.6g s, step %ld: state written to %s/checkpoint.h5; continue with "

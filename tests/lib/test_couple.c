@@ -233,7 +233,7 @@ START_TEST(test_crossing_fused)
                 ck_assert_int_eq(X.np, 1);
                 vres_liu_opts o = S.v.o;
                 o.order = order;
-                vres_liu_at_x(&S.v.cells, o, S.v.pos, S.v.vel, S.v.rho, S.v.mass, S.v.type, c, &X, NULL);
+                vres_liu_at_x(&S.v.cells, o, S.v.pos, S.v.vel, S.v.rho, S.v.mass, S.v.type, c, &X, NULL, NULL);
                 const double want = vres_couple_crossing(&S.v, c, normals[k], dpc, vbox, dt);
                 ck_assert_msg(X.m == want, "normal %d at (%g, %g): %.17g, separately %.17g", k, c[0], c[2], X.m, want);
                 compared++, counting += want != 0;
