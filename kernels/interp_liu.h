@@ -330,8 +330,9 @@ VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells
     return 1;
 }
 
-/* vres_liu_gather's body for N unknowns in dimension DIM, both compile-time constants where
- * vres_liu_gather calls it (so the loops over the matrix unroll), the sums kept in locals (not
+/* vres_liu_gather's body for N unknowns in dimension DIM, with the sigma sum into sg where SG is
+ * 1 (sg NULL with SG 0), all three compile-time constants where vres_liu_gather calls it (so the
+ * loops over the matrix unroll, and a gather without sg runs no test of it), the sums kept in locals (not
  * behind s, which the compiler would have to assume aliases the donors' positions). As
  * kernels/sph.h's vres_sph_interact_v, each pass over up to VRES_LIU_LIST candidates
  *   1. computes their offsets and distances (vector instructions over a run of slots);
@@ -353,7 +354,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
                                              const double *pos, const float *vel, const float *rho,
                                              const double *mass, const uint8_t *type, const double x[3],
                                              vres_cross *X, double *sg, vres_liu_cache *C, const int N,
-                                             const int DIM, const int fresh)
+                                             const int DIM, const int fresh, const int SG)
 {
     vres_cell_range nb[27];
     int m = 0, cx[3];
@@ -361,7 +362,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
     /* the cached neighbourhood where C holds it (or can), else the cells: a row's three cells
        side by side in memory are one range (the same slots in the same order as
        vres_cells_neighbours gives them) */
-    const vres_liu_cache *K = C && located && vres_liu_cache_for(C, g, cx, pos, type, sg != NULL) ? C : NULL;
+    const vres_liu_cache *K = C && located && vres_liu_cache_for(C, g, cx, pos, type, SG) ? C : NULL;
     if (!K && located) m = vres_cells_rows(g, cx[0], cx[1], cx[2], nb, NULL);
     const int nl = DIM + 1, P = (N + 3) / 4 * 4;
     const double h = o.k.h, fourh2 = 4.0 * h * h, inv_h = 1.0 / h, h2 = h * h, rho0 = o.rho0;
@@ -446,7 +447,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             Q.r2[nk] = L.r2[j];
             Q.mb[nk] = mass[b];
             Q.den[nk] = wall ? rho0 : (double)rho[b];
-            nk += wall || vres_type_is_fluid(t) || (sg && vres_type_acts_fluid(t));
+            nk += wall || vres_type_is_fluid(t) || (SG && vres_type_acts_fluid(t));
         }
         /* 4: their kernel terms */
 #pragma omp simd
@@ -469,7 +470,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
             const int i0 = L.kept[j];
             const size_t b = lb[i0];
             const int t = type[b];
-            if (sg) { /* vres_couple_sigma_vec's term, the same operations */
+            if (SG) { /* vres_couple_sigma_vec's term, the same operations */
                 const double w = Q.vb[j] * Q.negf[j];
                 sg[0] += w * L.d[0][i0];
                 if (DIM == 3) sg[1] += w * L.d[1][i0];
@@ -540,12 +541,17 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_x(vres_liu_acc *s, 
                                                                const double x[3], vres_cross *X, double *sg,
                                                                vres_liu_cache *C, const int fresh)
 {
+    /* with sg a variant of its own (SG 1), so that the gathers without one run the same code */
     if (g->dim == 2) {
-        if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 6, 2, fresh);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 3, 2, fresh);
+        if (s->n == 6 && sg) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 6, 2, fresh, 1);
+        else if (s->n == 6) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, NULL, C, 6, 2, fresh, 0);
+        else if (sg) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 3, 2, fresh, 1);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, NULL, C, 3, 2, fresh, 0);
     } else {
-        if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 10, 3, fresh);
-        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 4, 3, fresh);
+        if (s->n == 10 && sg) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 10, 3, fresh, 1);
+        else if (s->n == 10) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, NULL, C, 10, 3, fresh, 0);
+        else if (sg) vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, sg, C, 4, 3, fresh, 1);
+        else vres_liu_gather_n(s, g, o, pos, vel, rho, mass, type, x, X, NULL, C, 4, 3, fresh, 0);
     }
 }
 
