@@ -330,6 +330,65 @@ VRES_HD static inline int vres_liu_cache_for(vres_liu_cache *C, const vres_cells
     return 1;
 }
 
+/* One pass's candidates of the gather (vres_liu_gather_n). */
+typedef struct vres_liu_cand {
+    double d[3][VRES_LIU_LIST];  /* x_b - x (m; y unset in 2D) */
+    double r2[VRES_LIU_LIST];    /* |x_b - x|^2 (m^2) */
+    size_t b[VRES_LIU_LIST];     /* slot (read from the cells; the cache has its own) */
+    uint8_t kept[VRES_LIU_LIST]; /* [0, nkept): indices of the kept candidates */
+} vres_liu_cand;
+
+/* Step 1 of a gather's pass (vres_liu_gather_n) around x (m) in dimension DIM (a compile-time
+ * constant there): up to VRES_LIU_LIST candidates' offsets and distances into L, computed side by
+ * side, from the cache K (entries from *kc on; NULL: none) or else from the ranges nb[*c..m)
+ * (slots from *b0 on), both cursors moved past them. Returns how many, their slots into *lb (L->b,
+ * or the cache's own). */
+VRES_HD static inline VRES_FORCE_INLINE int vres_liu_pass_fill(vres_liu_cand *L, const size_t **lb,
+                                                               const vres_liu_cache *K, int *kc,
+                                                               const vres_cell_range *nb, int m, int *c, size_t *b0,
+                                                               const double *pos, const double x[3], const int DIM)
+{
+    int nc = 0;
+    *lb = L->b;
+    if (K) { /* from the cache: the same offsets and distances, read side by side */
+        nc = K->n - *kc < VRES_LIU_LIST ? K->n - *kc : VRES_LIU_LIST;
+        const double *k0 = K->x[0] + *kc, *k1 = K->x[1] + *kc, *k2 = K->x[2] + *kc;
+#pragma omp simd
+        for (int j = 0; j < nc; j++) {
+            const double d0 = k0[j] - x[0], d2 = k2[j] - x[2], d1 = DIM == 2 ? 0.0 : k1[j] - x[1];
+            L->d[0][j] = d0, L->d[2][j] = d2;
+            L->r2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
+            if (DIM == 3) L->d[1][j] = d1;
+        }
+        *lb = K->b + *kc;
+        *kc += nc;
+        return nc;
+    }
+    for (; *c < m; (*c)++, *b0 = *c < m ? nb[*c].begin : 0) {
+        const double sh[3] = {nb[*c].shift[0], nb[*c].shift[1], nb[*c].shift[2]};
+        size_t e = nb[*c].end;
+        if (e - *b0 > (size_t)(VRES_LIU_LIST - nc)) e = *b0 + (size_t)(VRES_LIU_LIST - nc);
+        const int len = (int)(e - *b0);
+        const size_t bb = *b0;
+        const double *pb = pos + 3 * bb;
+        double *c0 = L->d[0] + nc, *c1 = L->d[1] + nc, *c2 = L->d[2] + nc, *cr2 = L->r2 + nc;
+        size_t *cb = L->b + nc;
+        /* the offsets and distances of a run of slots */
+#pragma omp simd
+        for (int j = 0; j < len; j++) {
+            const double d0 = pb[3 * j] + sh[0] - x[0], d2 = pb[3 * j + 2] + sh[2] - x[2];
+            const double d1 = DIM == 2 ? 0.0 : pb[3 * j + 1] + sh[1] - x[1];
+            c0[j] = d0, c2[j] = d2, cr2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
+            if (DIM == 3) c1[j] = d1; /* 2D: no y offsets */
+            cb[j] = bb + (size_t)j;
+        }
+        nc += len;
+        *b0 = e;
+        if (e < nb[*c].end) break; /* the pass is full: do it, then go on from *b0 */
+    }
+    return nc;
+}
+
 /* vres_liu_gather's body for N unknowns in dimension DIM, with the sigma sum into sg where SG is
  * 1 (sg NULL with SG 0), all three compile-time constants where vres_liu_gather calls it (so the
  * loops over the matrix unroll, and a gather without sg runs no test of it), the sums kept in locals (not
@@ -376,12 +435,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
         for (int j = 0; j < P; j++) A[i][j] = j < N && !fresh ? s->a[i][j] : 0.0;
         for (int q = 0; q < 4; q++) Rt[i][q] = fresh ? 0.0 : s->r[q][i];
     }
-    struct { /* one pass's candidates */
-        double d[3][VRES_LIU_LIST]; /* x_b - x (m; y unset in 2D) */
-        double r2[VRES_LIU_LIST];   /* |x_b - x|^2 (m^2) */
-        size_t b[VRES_LIU_LIST];    /* slot */
-        uint8_t kept[VRES_LIU_LIST]; /* [0, nkept): indices of the kept candidates */
-    } L;
+    vres_liu_cand L;
     struct { /* the kept donors: what the terms need, then the terms */
         double r2[VRES_LIU_LIST];   /* r^2 (m^2) */
         double mb[VRES_LIU_LIST];   /* mass (kg) */
@@ -398,42 +452,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_liu_gather_n(vres_liu_acc *s, 
     int c = 0, kc = 0; /* the next range, or the next cache entry */
     size_t b0 = m ? nb[0].begin : 0;
     while (K ? kc < K->n : c < m) {
-        int nc = 0;              /* candidates in this pass */
-        const size_t *lb = L.b; /* their slots: L.b, or the cache's own */
-        if (K) { /* 1 from the cache: the same offsets and distances, read side by side */
-            nc = K->n - kc < VRES_LIU_LIST ? K->n - kc : VRES_LIU_LIST;
-            const double *k0 = K->x[0] + kc, *k1 = K->x[1] + kc, *k2 = K->x[2] + kc;
-#pragma omp simd
-            for (int j = 0; j < nc; j++) {
-                const double d0 = k0[j] - x[0], d2 = k2[j] - x[2], d1 = DIM == 2 ? 0.0 : k1[j] - x[1];
-                L.d[0][j] = d0, L.d[2][j] = d2;
-                L.r2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
-                if (DIM == 3) L.d[1][j] = d1;
-            }
-            lb = K->b + kc;
-            kc += nc;
-        }
-        for (; !K && c < m; c++, b0 = c < m ? nb[c].begin : 0) {
-            const double sh[3] = {nb[c].shift[0], nb[c].shift[1], nb[c].shift[2]};
-            size_t e = nb[c].end;
-            if (e - b0 > (size_t)(VRES_LIU_LIST - nc)) e = b0 + (size_t)(VRES_LIU_LIST - nc);
-            const int len = (int)(e - b0);
-            const double *pb = pos + 3 * b0;
-            double *c0 = L.d[0] + nc, *c1 = L.d[1] + nc, *c2 = L.d[2] + nc, *cr2 = L.r2 + nc;
-            size_t *cb = L.b + nc;
-            /* 1: the offsets and distances of a run of slots */
-#pragma omp simd
-            for (int j = 0; j < len; j++) {
-                const double d0 = pb[3 * j] + sh[0] - x[0], d2 = pb[3 * j + 2] + sh[2] - x[2];
-                const double d1 = DIM == 2 ? 0.0 : pb[3 * j + 1] + sh[1] - x[1];
-                c0[j] = d0, c2[j] = d2, cr2[j] = DIM == 2 ? d0 * d0 + d2 * d2 : d0 * d0 + d1 * d1 + d2 * d2;
-                if (DIM == 3) c1[j] = d1; /* 2D: no y offsets */
-                cb[j] = b0 + (size_t)j;
-            }
-            nc += len;
-            b0 = e;
-            if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
-        }
+        const size_t *lb;                                                  /* the pass's slots */
+        const int nc = vres_liu_pass_fill(&L, &lb, K, &kc, nb, m, &c, &b0, pos, x, DIM); /* 1 */
         /* 2: the candidates inside the support (about a third of them), then of those the donor
            fluid and walls (with sg, buffer and inlet particles too), each pass without a branch;
            3: their masses and densities */
