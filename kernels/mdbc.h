@@ -118,7 +118,7 @@ VRES_HD static inline double vres_mdbc_solve(int n, double *A, double *b)
 typedef double vres_mdbc_v4 __attribute__((vector_size(32)));
 #endif
 
-/* The kept fluid donors of one pass of vres_mdbc_ghost, with their kernel terms. */
+/* One pass of vres_mdbc_ghost: its candidates, then the kept fluid donors with their kernel terms. */
 typedef struct vres_mdbc_pass {
     double d[3][VRES_MDBC_LIST]; /* x_g - x_b (m), by candidate */
     double r2[VRES_MDBC_LIST];   /* |x_g - x_b|^2 (m^2), by candidate */
