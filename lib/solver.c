@@ -519,21 +519,31 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         vres_info("floating bodies run on the CPU backend: using the CPU");
         dev = VRES_DEV_CPU;
     }
-    /* the coupling of several domains and inlet/outlet zones run on the CPU backend only, for
-       now: --device auto takes the CPU for them, --device cuda is refused before anything is
-       written */
+    /* inlet/outlet zones run on the CPU backend only, for now: --device auto takes the CPU for
+       them, --device cuda is refused before anything is written. The coupling of several
+       domains has CUDA hooks (solver_cuda_couple.cu) that no GPU has run yet: --device cuda runs
+       them and says so, --device auto takes the CPU until they have been checked on a GPU */
     const int nzones = vres_inout_count(s);
-    if ((set.n > 1 || nzones > 0) && dev == VRES_DEV_CUDA) {
-        char what[128];
-        if (set.n > 1) snprintf(what, sizeof what, "%zu domains: the coupling of variable resolution", set.n);
-        else snprintf(what, sizeof what, "%d inlet/outlet zone%s: the zones", nzones, nzones == 1 ? "" : "s");
+    if (nzones > 0 && dev == VRES_DEV_CUDA) {
         if (o->device && !strcmp(o->device, "cuda")) {
-            vres_error("%s: the CUDA backend does not run them yet; use --device cpu", what);
+            vres_error("%d inlet/outlet zone%s: the zones: the CUDA backend does not run them yet; use --device cpu",
+                       nzones, nzones == 1 ? "" : "s");
             free_set(&set, 0);
             return VRES_RUN_FAIL;
         }
-        vres_info("%s run on the CPU backend: using the CPU", what);
+        vres_info("%d inlet/outlet zone%s: the zones run on the CPU backend: using the CPU", nzones,
+                  nzones == 1 ? "" : "s");
         dev = VRES_DEV_CPU;
+    }
+    if (set.n > 1 && dev == VRES_DEV_CUDA) {
+        if (o->device && !strcmp(o->device, "cuda")) {
+            vres_warn("%zu domains: the CUDA backend's coupling of variable resolution has not been run on a GPU "
+                      "before; compare its ledger.tsv with a --device cpu run", set.n);
+        } else {
+            vres_info("%zu domains: the coupling of variable resolution runs on the CPU backend until its CUDA "
+                      "hooks have been run on a GPU (--device cuda runs them): using the CPU", set.n);
+            dev = VRES_DEV_CPU;
+        }
     }
     if (o->threads > 0) omp_set_num_threads(o->threads);
     c.threads = omp_get_max_threads();

@@ -442,12 +442,8 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
 static void cpu_count_events(cpu_ctx *x, size_t *n_ev, double *m_ev)
 {
     const vres_domain *d = x->d;
-    uint8_t *ev = x->mark;
-    for (size_t i = 0; i < d->n; i++) {
-        const int e = ev[i];
-        if (e != VRES_EV_NONE) n_ev[e]++, m_ev[e] += d->mass_p[i];
-        ev[i] = (uint8_t)vres_couple_event_deletes(e);
-    }
+    vres_couple_tally(d->n, x->mark, d->mass_p, n_ev, m_ev);
+    for (size_t i = 0; i < d->n; i++) vres_couple_mark_one(i, x->mark);
 }
 
 /* This domain as a donor: the store's arrays and the cell list of the last sort. */

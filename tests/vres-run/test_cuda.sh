@@ -4,7 +4,8 @@
 # 1, and no run directory is made; --device auto runs on the CPU and says so in one line. With a
 # GPU: --device cuda runs the tank on it, names it in the module list, and keeps the particles
 # (ids, fluid count and mass: no particle is lost or duplicated by the device's cell sort), and
-# excludes what leaves the domain on the device (each particle kept or excluded, once). A
+# excludes what leaves the domain on the device (each particle kept or excluded, once), and runs
+# two domains (the coupling's hooks) as the CPU does, within the ledger's bound and 1%. A
 # build where nvcc was found has the CUDA backend in libvres: vres_backend_cuda_open defined by
 # solver_cuda.cu's object, once (solver.c's stub is compiled only without it).
 source "$(dirname "$0")/../harness.sh"
@@ -56,4 +57,22 @@ else
         sort -n >"$T/ids"
     values /Domains/D0/Id "$T/up.h5" | sort -n >"$T/ids0"
     check "--device cuda: each particle kept or excluded, once" cmp -s "$T/ids" "$T/ids0"
+    # two domains (solver_cuda_couple.cu): the hydrostatic tank with its box, on the GPU and on
+    # the CPU; the sums differ in order and rounding (no bit equality across devices), so the
+    # GPU's run is held to what the CPU's shows: the ledger within its bound, and each
+    # domain's fluid count at the end within 1% of the CPU's
+    "$BIN/vres-gencase" -q --dp 0.04 "$CASES/hydrostatic_vres2d/hydrostatic_vres2d_Def.xml" |
+        "$BIN/vres-partition" -q - -o "$T/vres.h5" || notok "partition the hydrostatic tank with its box"
+    expect 0 "--device cuda: two domains run" "$RUN" --device cuda --tmax 0.05 --tout 0.025 "$T/vres.h5" -o "$T/gv"
+    check "--device cuda, two domains: the CUDA backend" grep -q 'modules: .* cuda(' "$ERR"
+    check "--device cuda, two domains: one line says its coupling is new to a GPU" \
+        [ "$(grep -c 'coupling of variable resolution has not been run on a GPU before' "$ERR")" -eq 1 ]
+    expect 0 "--device cpu: the same two domains" "$RUN" --device cpu --tmax 0.05 --tout 0.025 "$T/vres.h5" -o "$T/cv"
+    ledger_within_bound "$T/gv/snap_00002.h5" "$T/gv" 6
+    for k in 0 1; do
+        read ng nc < <(paste <(grep -v '^#' "$T/gv/ledger.tsv" | awk -F'\t' -v k=$k '$3 == k' | tail -1 | cut -f5) \
+                             <(grep -v '^#' "$T/cv/ledger.tsv" | awk -F'\t' -v k=$k '$3 == k' | tail -1 | cut -f5))
+        check "--device cuda, two domains: D$k's fluid count $ng within 1% of the CPU's $nc" \
+            awk -v a="$ng" -v b="$nc" 'BEGIN {exit !(b > 0 && (a - b) ^ 2 <= (0.01 * b) ^ 2)}'
+    done
 fi

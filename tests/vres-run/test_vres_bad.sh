@@ -4,7 +4,7 @@
 # interfaces), a corrupt /Interfaces (a count that is not the datasets' rows, a NaN position, a
 # non-unit normal, domains that are not parent and child), a tracking box without its motion or
 # following no moving body, a restart from a partition store (no snapshot), Verlet or the cubic
-# spline kernel with two domains, and --device cuda with two domains. Each gets one message naming the object, exit
+# spline kernel with two domains, and --device cuda with two domains where no GPU answers. Each gets one message naming the object, exit
 # 1, and nothing in the run directory. The stores are vres-partition's of cases/hydrostatic_vres2d, edited with h5py (so
 # that vres's own writer, which checks what it writes, is bypassed) or with the parameter
 # setter of tests/lib/test_solver.c.
@@ -111,10 +111,15 @@ then
         "cubic spline with two domains" "$T/cubic.h5"
 else notok "make the cubic-spline store with $SETTER (build it: make $VRES_BUILD/tests/test_solver)"; fi
 
-# ---- CUDA: the ASan build has none; the normal build finds no GPU here, and with a GPU the CUDA
-# backend does not run the coupling yet. Refused in every case, never a silent CPU run.
+# ---- CUDA: the ASan build has none, and is refused; the normal build finds no GPU here, which is
+# refused with nothing written; where a GPU answers, --device cuda runs two domains (test_cuda.sh
+# checks that run against the CPU's), never a silent CPU run.
 refused 1 'no CUDA support' "--device cuda with two domains (ASan build)" --device cuda "$T/parts.h5"
 rm -rf "$T/out"
-expect_err 1 'no CUDA GPU answered|no CUDA support|does not run the coupling of variable resolution yet' \
-    "--device cuda with two domains (normal build)" "$BIN/vres-run" --device cuda "$T/parts.h5" -o "$T/out"
-nothing_in "$T/out" "--device cuda with two domains (normal build): nothing written"
+run "$BIN/vres-run" --device cuda --tmax 0.001 "$T/parts.h5" -o "$T/out"
+if grep -q -E 'no CUDA GPU answered|no CUDA support' "$ERR"; then
+    check "--device cuda with two domains, no GPU (normal build): exit 1" [ "$STATUS" -eq 1 ]
+    nothing_in "$T/out" "--device cuda with two domains, no GPU (normal build): nothing written"
+else
+    check "--device cuda with two domains, a GPU answers: run on it" grep -q 'modules: .* cuda(' "$ERR"
+fi
