@@ -507,22 +507,8 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }
-    /* floating bodies run on the CPU backend only, for now (as the coupling below) */
-    size_t nfloating = 0;
-    for (size_t k = 0; k < set.n; k++) nfloating += set.dom[k].nfloating;
-    if (nfloating && dev == VRES_DEV_CUDA) {
-        if (o->device && !strcmp(o->device, "cuda")) {
-            vres_error("floating bodies: the CUDA backend does not run them yet; use --device cpu");
-            free_set(&set, 0);
-            return VRES_RUN_FAIL;
-        }
-        vres_info("floating bodies run on the CPU backend: using the CPU");
-        dev = VRES_DEV_CPU;
-    }
     /* inlet/outlet zones run on the CPU backend only, for now: --device auto takes the CPU for
-       them, --device cuda is refused before anything is written. The coupling of several
-       domains has CUDA hooks (solver_cuda_couple.cu) that no GPU has run yet: --device cuda runs
-       them and says so, --device auto takes the CPU until they have been checked on a GPU */
+       them, --device cuda is refused before anything is written */
     const int nzones = vres_inout_count(s);
     if (nzones > 0 && dev == VRES_DEV_CUDA) {
         if (o->device && !strcmp(o->device, "cuda")) {
@@ -535,13 +521,19 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
                   nzones == 1 ? "" : "s");
         dev = VRES_DEV_CPU;
     }
-    if (set.n > 1 && dev == VRES_DEV_CUDA) {
+    /* floating bodies and the coupling of several domains have CUDA code (solver_cuda.cu's
+       body_forces, solver_cuda_couple.cu) that no GPU has run yet: --device cuda runs it and
+       says so, --device auto takes the CPU until it has been checked on a GPU */
+    size_t nfloating = 0;
+    for (size_t k = 0; k < set.n; k++) nfloating += set.dom[k].nfloating;
+    const char *unproven = set.n > 1 ? "the coupling of variable resolution" : nfloating ? "floating bodies" : NULL;
+    if (unproven && dev == VRES_DEV_CUDA) {
         if (o->device && !strcmp(o->device, "cuda")) {
-            vres_warn("%zu domains: the CUDA backend's coupling of variable resolution has not been run on a GPU "
-                      "before; compare its ledger.tsv with a --device cpu run", set.n);
+            vres_warn("%s: the CUDA backend's code for them has not been run on a GPU before; compare the run "
+                      "with a --device cpu one", unproven);
         } else {
-            vres_info("%zu domains: the coupling of variable resolution runs on the CPU backend until its CUDA "
-                      "hooks have been run on a GPU (--device cuda runs them): using the CPU", set.n);
+            vres_info("%s: run on the CPU backend until the CUDA backend's code for them has been run on a GPU "
+                      "(--device cuda runs it): using the CPU", unproven);
             dev = VRES_DEV_CPU;
         }
     }

@@ -26,6 +26,7 @@ extern "C" { /* the store's C header, first: the headers below include it withou
 
 #include "../kernels/state.h"
 #include "../kernels/eos.h"
+#include "../kernels/floating.h"
 #include "../kernels/mdbc.h"
 #include "../kernels/motion.h"
 #include "../kernels/sph.h"
@@ -123,6 +124,13 @@ VRES_HD static inline void is_type_one(size_t i, const uint8_t *type, int t, uin
     flag[i] = type[i] == t;
 }
 VRES_PARTICLE_LOOP(is_type, is_type_one, (const uint8_t *type, int t, uint8_t *flag), (type, t, flag))
+
+/* flag[i] = 1 when particle i belongs to a floating body, else 0. */
+VRES_HD static inline void is_floating_one(size_t i, const uint8_t *type, uint8_t *flag)
+{
+    flag[i] = (uint8_t)vres_type_is_floating(type[i]);
+}
+VRES_PARTICLE_LOOP(is_floating, is_floating_one, (const uint8_t *type, uint8_t *flag), (type, flag))
 
 /* slot[i] = i: the indices compaction selects from. */
 VRES_HD static inline void iota_one(size_t i, size_t *slot)
@@ -473,22 +481,70 @@ static size_t cu_mark_out(vres_backend *b)
     return k == (size_t)-1 ? 0 : k;
 }
 
-/* The slots whose flag (n device bytes) is set, in order, into hc.perm (CUB's DeviceSelect over
- * the indices 0..n-1, no host copy but the count): how many, or (size_t)-1 after a failure. */
-static size_t select_slots(cuda_ctx *x, const uint8_t *flag, size_t n, const char *what)
+/* The slots whose flag (n device bytes) is set, in order, into out (device, room for them; hc.perm
+ * for a compaction, which then stales the sort's) by CUB's DeviceSelect over the indices 0..n-1,
+ * no host copy but the count: how many, or (size_t)-1 after a failure. */
+static size_t select_into(cuda_ctx *x, const uint8_t *flag, size_t n, size_t *out, const char *what)
 {
     unsigned long long k = 0;
     size_t bytes = 0;
     if (!n) return 0;
     iota_cuda(n, x->slot);
     if (!launched(x, what) ||
-        !ok(x, cub::DeviceSelect::Flagged(NULL, bytes, x->slot, flag, x->hc.perm, x->dres, (int64_t)n), what) ||
+        !ok(x, cub::DeviceSelect::Flagged(NULL, bytes, x->slot, flag, out, x->dres, (int64_t)n), what) ||
         !grow_temp(x, bytes) ||
-        !ok(x, cub::DeviceSelect::Flagged(x->temp, bytes, x->slot, flag, x->hc.perm, x->dres, (int64_t)n), what) ||
+        !ok(x, cub::DeviceSelect::Flagged(x->temp, bytes, x->slot, flag, out, x->dres, (int64_t)n), what) ||
         !ok(x, cudaMemcpy(&k, x->dres, sizeof k, cudaMemcpyDeviceToHost), what))
         return (size_t)-1;
-    x->sorted_n = (size_t)-1; /* hc.perm is the sort's no more */
+    if (out == x->hc.perm) x->sorted_n = (size_t)-1; /* hc.perm is the sort's no more */
     return (size_t)k;
+}
+
+/* The flagged slots into hc.perm (select_into). */
+static size_t select_slots(cuda_ctx *x, const uint8_t *flag, size_t n, const char *what)
+{
+    return select_into(x, flag, n, x->hc.perm, what);
+}
+
+/* The floating bodies' force and torque sums of the last forces: their particles selected on
+ * the device (slot order), their positions, masses, accelerations and mk gathered and copied to
+ * the host, and summed there in slot order by kernels/floating.h's vres_float_share, as the CPU
+ * backend sums them (the same bits from the same accelerations). */
+static void cu_body_forces(vres_backend *b, const double *c, double *ft)
+{
+    cuda_ctx *x = ctx_of(b);
+    const char *what = "sum the floating bodies' forces";
+    const size_t nf = x->dc.nfloating;
+    memset(ft, 0, 6 * x->nbodies * sizeof *ft);
+    if (x->failed || !nf) return;
+    is_floating_cuda(b->n, x->dev.type, x->flag);
+    if (!launched(x, what)) return;
+    size_t k = select_into(x, x->flag, b->n, x->fsel, what);
+    if (k == (size_t)-1) return;
+    if (k != nf) {
+        vres_error("CUDA: %zu floating-body particles where the domain had %zu", k, nf);
+        x->failed = 1;
+        return;
+    }
+    unsigned blocks = (unsigned)((k + 255) / 256);
+    gather_kernel<uint64_t><<<blocks, 256>>>(k, 3, x->fsel, (const uint64_t *)x->dev.pos, (uint64_t *)x->fpos);
+    gather_kernel<uint64_t><<<blocks, 256>>>(k, 1, x->fsel, (const uint64_t *)x->dev.mass_p, (uint64_t *)x->fmass);
+    gather_kernel<uint64_t><<<blocks, 256>>>(k, 3, x->fsel, (const uint64_t *)x->ace, (uint64_t *)x->face);
+    gather_kernel<uint32_t><<<blocks, 256>>>(k, 1, x->fsel, (const uint32_t *)x->dev.mk, (uint32_t *)x->fmk);
+    if (!launched(x, what)) return;
+    double *pos = (double *)vres_xcalloc(7 * k, sizeof *pos), *mass = pos + 3 * k, *ace = pos + 4 * k;
+    int32_t *mk = (int32_t *)vres_xcalloc(k, sizeof *mk);
+    if (ok(x, cudaMemcpy(pos, x->fpos, 3 * k * sizeof *pos, cudaMemcpyDeviceToHost), what) &&
+        ok(x, cudaMemcpy(mass, x->fmass, k * sizeof *mass, cudaMemcpyDeviceToHost), what) &&
+        ok(x, cudaMemcpy(ace, x->face, 3 * k * sizeof *ace, cudaMemcpyDeviceToHost), what) &&
+        ok(x, cudaMemcpy(mk, x->fmk, k * sizeof *mk, cudaMemcpyDeviceToHost), what))
+        for (size_t i = 0; i < k; i++) {
+            size_t j = 0;
+            while (j < x->nbodies && !(x->hbody[j].floating && x->hbody[j].mkbound == mk[i])) j++;
+            if (j < x->nbodies) vres_float_share(i, pos, mass, ace, &c[3 * j], &ft[6 * j]);
+        }
+    free(pos);
+    free(mk);
 }
 
 /* The marked particles (every field, in slot order) into the host domain out: selected and
@@ -626,9 +682,11 @@ static void cu_close(vres_backend *b)
     if (!x) return;
     for (int k = 0; k < VRES_NFIELDS; k++) release(x, vres_field_array(&x->dev, &vres_fields[k]));
     for (int k = 0; k < x->nwork; k++) release(x, *x->work[k].p);
-    void *arrays[] = {x->hc.begin, x->dcells, x->temp, x->dC, x->dP, x->dred, x->dres, x->dmv, x->dbody};
+    void *arrays[] = {x->hc.begin, x->dcells, x->temp, x->dC,   x->dP,    x->dred, x->dres,
+                      x->dmv,      x->dbody,  x->fsel, x->fpos, x->fmass, x->face, x->fmk};
     for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) release(x, arrays[k]);
     vres_cuda_couple_free(x);
+    free(x->hbody);
     free(x);
     b->ctx = NULL;
 }
@@ -662,8 +720,8 @@ static void cu_work_list(cuda_ctx *x)
     /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);
     if (c->verlet) add_work(x, &x->rhom1, sizeof *x->rhom1, VRES_WORK_CARRY, VRES_FIELD_RHO);
-    if (x->dc.nmoving) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
-    if (x->dc.nmoving && c->mdbc && x->dc.nnormal)
+    if (x->dc.nmoving || x->dc.nfloating) add_work(x, &x->xref, 3 * sizeof *x->xref, VRES_WORK_CARRY, VRES_FIELD_POS);
+    if ((x->dc.nmoving || x->dc.nfloating) && c->mdbc && x->dc.nnormal)
         add_work(x, &x->nref, 3 * sizeof *x->nref, VRES_WORK_CARRY, VRES_FIELD_NORMAL);
     if (c->mdbc && c->slip >= 2) add_work(x, &x->mvel, 3 * sizeof *x->mvel, VRES_WORK_CARRY, -1);
     for (int k = 0; k < 5; k++) add_work(x, &x->scratch[k], scratch_size[k], VRES_WORK_SCRATCH, -1);
@@ -687,12 +745,18 @@ static int cu_setup(cuda_ctx *x, const vres_store *s, const vres_domain *d)
     cu_work_list(x);
     for (int k = 0; k < x->nwork; k++)
         if (!alloc(x, x->work[k].p, x->cap * x->work[k].elem, what) || !work_init(x, &x->work[k], 0, n)) return 0;
-    if (x->dc.nmoving) {
-        vres_wall_body *wb = vres_wall_bodies(s);
-        int good = alloc_copy(x, &x->dbody, wb, s->nbodies, 1, what) &&
-                   alloc(x, &x->dmv, s->nbodies * sizeof *x->dmv, what);
-        free(wb);
-        if (!good) return 0;
+    if (x->dc.nmoving || x->dc.nfloating) {
+        x->hbody = vres_wall_bodies(s);
+        if (!alloc_copy(x, &x->dbody, x->hbody, s->nbodies, 1, what) ||
+            !alloc(x, &x->dmv, s->nbodies * sizeof *x->dmv, what))
+            return 0;
+    }
+    if (x->dc.nfloating) { /* body_forces' selection: a body's particles are never created or deleted */
+        const size_t nf = x->dc.nfloating;
+        if (!alloc(x, &x->fsel, nf * sizeof *x->fsel, what) || !alloc(x, &x->fpos, 3 * nf * sizeof *x->fpos, what) ||
+            !alloc(x, &x->fmass, nf * sizeof *x->fmass, what) || !alloc(x, &x->face, 3 * nf * sizeof *x->face, what) ||
+            !alloc(x, &x->fmk, nf * sizeof *x->fmk, what))
+            return 0;
     }
     what = "allocate the cells";
     if (!alloc(x, &x->hc.begin, (x->hc.ncells + 2) * sizeof *x->hc.begin, what) ||
@@ -761,6 +825,7 @@ extern "C" int vres_backend_cuda_open(vres_backend *b, const vres_store *s, cons
     b->verlet = cu_verlet;
     b->move_walls = cu_move_walls;
     b->anchor_walls = cu_anchor_walls;
+    b->body_forces = cu_body_forces;
     b->wrap = cu_wrap;
     b->mdbc = cu_mdbc;
     b->check = cu_check;

@@ -73,6 +73,12 @@ typedef struct cuda_ctx {
     unsigned long long *dres; /* [2] check: first fatal slot, particles out of the box; count_pairs: the sum */
     vres_motion_state *dmv;   /* [nbodies] the bodies' transforms for move_walls; NULL without moving walls */
     vres_wall_body *dbody; /* [nbodies] which bodies move, by mkbound; NULL without moving walls */
+    vres_wall_body *hbody; /* [nbodies] host copy of dbody (body_forces finds a particle's body in it) */
+    size_t *fsel;         /* [nfloating] body_forces: the floating bodies' slots; NULL without floating bodies */
+    double *fpos;         /* [3 nfloating] their positions (m) */
+    double *fmass;        /* [nfloating] their masses (kg) */
+    double *face;         /* [3 nfloating] their accelerations of the last forces (m/s^2) */
+    int32_t *fmk;         /* [nfloating] their mk */
 
     vres_interact_fn interact;             /* 3D variant without shifting sums */
     vres_interact_shift_fn interact_shift; /* 3D variant with them; NULL without shifting */

@@ -5,7 +5,8 @@
 # GPU: --device cuda runs the tank on it, names it in the module list, and keeps the particles
 # (ids, fluid count and mass: no particle is lost or duplicated by the device's cell sort), and
 # excludes what leaves the domain on the device (each particle kept or excluded, once), and runs
-# two domains (the coupling's hooks) as the CPU does, within the ledger's bound and 1%. A
+# two domains (the coupling's hooks) as the CPU does, within the ledger's bound and 1%, and moves
+# a floating body as the CPU does. A
 # build where nvcc was found has the CUDA backend in libvres: vres_backend_cuda_open defined by
 # solver_cuda.cu's object, once (solver.c's stub is compiled only without it).
 source "$(dirname "$0")/../harness.sh"
@@ -66,7 +67,7 @@ else
     expect 0 "--device cuda: two domains run" "$RUN" --device cuda --tmax 0.05 --tout 0.025 "$T/vres.h5" -o "$T/gv"
     check "--device cuda, two domains: the CUDA backend" grep -q 'modules: .* cuda(' "$ERR"
     check "--device cuda, two domains: one line says its coupling is new to a GPU" \
-        [ "$(grep -c 'coupling of variable resolution has not been run on a GPU before' "$ERR")" -eq 1 ]
+        [ "$(grep -c 'coupling of variable resolution: the CUDA backend.s code for them has not been run on a GPU before' "$ERR")" -eq 1 ]
     expect 0 "--device cpu: the same two domains" "$RUN" --device cpu --tmax 0.05 --tout 0.025 "$T/vres.h5" -o "$T/cv"
     ledger_within_bound "$T/gv/snap_00002.h5" "$T/gv" 6
     for k in 0 1; do
@@ -75,4 +76,18 @@ else
         check "--device cuda, two domains: D$k's fluid count $ng within 1% of the CPU's $nc" \
             awk -v a="$ng" -v b="$nc" 'BEGIN {exit !(b > 0 && (a - b) ^ 2 <= (0.01 * b) ^ 2)}'
     done
+    # a floating body (cu_body_forces): the box of cases/floating_box2d released off its
+    # equilibrium, 0.2 s on each device; its heave then is a few cm, and the two runs' centres
+    # must agree within 2 mm (a tenth of dp: different rounding, the same motion)
+    "$BIN/vres-gencase" -q --dp 0.04 "$CASES/floating_box2d/floating_box2d_Def.xml" -o "$T/box.h5" ||
+        notok "gencase the floating box"
+    expect 0 "--device cuda: the floating box runs" "$RUN" --device cuda --tmax 0.2 --tout 0.2 "$T/box.h5" -o "$T/gb"
+    check "--device cuda, floating box: one line says its code is new to a GPU" \
+        [ "$(grep -c 'floating bodies: the CUDA backend.s code for them has not been run on a GPU before' "$ERR")" -eq 1 ]
+    expect 0 "--device cpu: the same floating box" "$RUN" --device cpu --tmax 0.2 --tout 0.2 "$T/box.h5" -o "$T/cb"
+    zg=$(attr /Bodies/B0/center "$T/gb/snap_00001.h5" | sed -n 3p)
+    zc=$(attr /Bodies/B0/center "$T/cb/snap_00001.h5" | sed -n 3p)
+    z0=$(attr /Bodies/B0/center "$T/box.h5" | sed -n 3p)
+    check "--device cuda, floating box: moved ($z0 -> $zg m) as on the CPU ($zc m) within 2 mm" \
+        awk -v g="$zg" -v c="$zc" -v z="$z0" 'BEGIN {exit !((g - c) ^ 2 <= 0.002 ^ 2 && (c - z) ^ 2 > 0.002 ^ 2)}'
 fi
