@@ -189,6 +189,32 @@ VRES_HD static inline void vres_inout_impose_one(size_t i, vres_inout_zone z, vr
     vres_inout_state_at(&z, &D, &pos[3 * i], &vel[3 * i], &rho[i]);
 }
 
+/* Point j of p (a zone's segment, m) takes zone z's state there (vres_inout_state_at, D the
+ * zone's own domain): vel[3j..], rho[j] in and out. */
+VRES_HD static inline void vres_inout_point_one(size_t j, vres_inout_zone z, vres_donor D, const double *p, float *vel,
+                                                float *rho)
+{
+    vres_inout_state_at(&z, &D, &p[3 * j], &vel[3 * j], &rho[j]);
+}
+
+/* vres_inout_point_loop_cpu / _cuda (np, z, D, p, vel, rho). */
+VRES_PARTICLE_LOOP(vres_inout_point_loop, vres_inout_point_one,
+                   (vres_inout_zone z, vres_donor D, const double *p, float *vel, float *rho), (z, D, p, vel, rho))
+
+/* Spot j (p[3j..], normal[3j..], m) of a new particle's lattice: state[j] VRES_SEG_WAIT when a
+ * fluid, buffer or inlet particle of w lies within dp/2 of it (vres_couple_spot_taken), else
+ * VRES_SEG_FLUX. */
+VRES_HD static inline void vres_inout_spot_one(size_t j, vres_couple_walls w, const double *p, const double *normal,
+                                               double dp, uint8_t *state)
+{
+    state[j] = vres_couple_spot_taken(&w, &p[3 * j], &normal[3 * j], dp) ? VRES_SEG_WAIT : VRES_SEG_FLUX;
+}
+
+/* vres_inout_spot_loop_cpu / _cuda (np, w, p, normal, dp, state). */
+VRES_PARTICLE_LOOP(vres_inout_spot_loop, vres_inout_spot_one,
+                   (vres_couple_walls w, const double *p, const double *normal, double dp, uint8_t *state),
+                   (w, p, normal, dp, state))
+
 /* vres_inout_impose_loop_cpu / _cuda (n, z, D, pos, type, vel, rho). */
 VRES_PARTICLE_LOOP(vres_inout_impose_loop, vres_inout_impose_one,
                    (vres_inout_zone z, vres_donor D, const double *pos, const uint8_t *type, float *vel, float *rho),

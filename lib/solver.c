@@ -507,26 +507,16 @@ int vres_solver_run(vres_store *s, const vres_run_opts *o)
         free_set(&set, 0);
         return VRES_RUN_FAIL;
     }
-    /* inlet/outlet zones run on the CPU backend only, for now: --device auto takes the CPU for
-       them, --device cuda is refused before anything is written */
     const int nzones = vres_inout_count(s);
-    if (nzones > 0 && dev == VRES_DEV_CUDA) {
-        if (o->device && !strcmp(o->device, "cuda")) {
-            vres_error("%d inlet/outlet zone%s: the zones: the CUDA backend does not run them yet; use --device cpu",
-                       nzones, nzones == 1 ? "" : "s");
-            free_set(&set, 0);
-            return VRES_RUN_FAIL;
-        }
-        vres_info("%d inlet/outlet zone%s: the zones run on the CPU backend: using the CPU", nzones,
-                  nzones == 1 ? "" : "s");
-        dev = VRES_DEV_CPU;
-    }
-    /* floating bodies and the coupling of several domains have CUDA code (solver_cuda.cu's
-       body_forces, solver_cuda_couple.cu) that no GPU has run yet: --device cuda runs it and
-       says so, --device auto takes the CPU until it has been checked on a GPU */
+    /* floating bodies, the coupling of several domains and inlet/outlet zones have CUDA code
+       (solver_cuda.cu's body_forces, solver_cuda_couple.cu) that no GPU has run yet: --device
+       cuda runs it and says so, --device auto takes the CPU until it has been checked on a GPU */
     size_t nfloating = 0;
     for (size_t k = 0; k < set.n; k++) nfloating += set.dom[k].nfloating;
-    const char *unproven = set.n > 1 ? "the coupling of variable resolution" : nfloating ? "floating bodies" : NULL;
+    const char *unproven = set.n > 1 ? "the coupling of variable resolution"
+                           : nzones > 0 ? "inlet/outlet zones"
+                           : nfloating  ? "floating bodies"
+                                        : NULL;
     if (unproven && dev == VRES_DEV_CUDA) {
         if (o->device && !strcmp(o->device, "cuda")) {
             vres_warn("%s: the CUDA backend's code for them has not been run on a GPU before; compare the run "

@@ -511,6 +511,23 @@ static void cpu_inout_impose(vres_backend *b, const vres_inout_zone *z, const vr
     vres_inout_impose_loop_cpu(d->n, *z, *D, d->pos, d->type, d->vel, d->rho);
 }
 
+/* Zone z's state at np host points. */
+static void cpu_inout_points(vres_backend *b, const vres_inout_zone *z, const vres_donor *D, size_t np, const double *p,
+                             float *vel, float *rho)
+{
+    (void)b;
+    vres_inout_point_loop_cpu(np, *z, *D, p, vel, rho);
+}
+
+/* Which of np spots a fluid, buffer or inlet particle takes. */
+static void cpu_inout_spots(vres_backend *b, size_t np, const double *p, const double *normal, double dp,
+                            uint8_t *state)
+{
+    cpu_ctx *x = ctx_of(b);
+    vres_couple_walls w = {x->cells, x->d->pos, x->d->type, 0};
+    vres_inout_spot_loop_cpu(np, w, p, normal, dp, state);
+}
+
 int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, const run_cfg *c, const run_dom *dc)
 {
     cpu_ctx *x = vres_xcalloc(1, sizeof *x);
@@ -564,6 +581,8 @@ int vres_backend_cpu_open(vres_backend *b, const vres_store *s, vres_domain *d, 
     b->couple_shift = cpu_couple_shift;
     b->inout_classify = cpu_inout_classify;
     b->inout_impose = cpu_inout_impose;
+    b->inout_points = cpu_inout_points;
+    b->inout_spots = cpu_inout_spots;
     b->close = cpu_close;
     return 0;
 }

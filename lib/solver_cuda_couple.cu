@@ -1,6 +1,7 @@
 /* solver_cuda_couple.cu - the CUDA backend's hooks of the variable-resolution coupling
  * (solver_int.h's donor_view, couple_classify, couple_buffers, couple_shift, couple_segments;
- * lib/solver_couple.c drives them). The physics is kernels/couple.h's, through the very
+ * lib/solver_couple.c drives them) and of the inlet/outlet zones, which are buffers whose state
+ * is imposed (inout_classify, inout_impose, inout_points, inout_spots; lib/solver_inout.c). The physics is kernels/couple.h's, through the very
  * per-particle and per-segment functions the CPU backend runs (their VRES_PARTICLE_LOOP /
  * VRES_CACHED_LOOP _cuda launchers, a GPU thread without the CPU's interpolation cache). What is
  * CUDA-only here is mechanical: device copies of the small host tables the launches read (the
@@ -16,6 +17,7 @@
 #include <string.h>
 
 #include "../kernels/couple.h"
+#include "../kernels/inout.h"
 #include "solver_cuda_int.h"
 
 /* The coupling's device buffers of one backend, grown as needed (capacities in elements). */
@@ -188,6 +190,58 @@ static void cu_couple_segments(vres_backend *b, const vres_donor *donors, const 
             return;
 }
 
+/* Zone z's classification; events tallied, deletions marked. */
+static void cu_inout_classify(vres_backend *b, const vres_inout_zone *z, int first, size_t *n_ev, double *m_ev)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed || !ok(x, cudaMemset(x->mark, 0, b->n ? b->n : 1), "clear the marks")) return;
+    vres_inout_classify_loop_cuda(b->n, *z, first, x->dev.pos, x->dev.type, x->mark);
+    if (launched(x, "classify for a zone")) tally_events(x, b->n, n_ev, m_ev);
+}
+
+/* Zone z's state on its inlet particles (D: this domain's device view). */
+static void cu_inout_impose(vres_backend *b, const vres_inout_zone *z, const vres_donor *D)
+{
+    cuda_ctx *x = ctx_of(b);
+    if (x->failed) return;
+    vres_inout_impose_loop_cuda(b->n, *z, *D, x->dev.pos, x->dev.type, x->dev.vel, x->dev.rho);
+    launched(x, "impose a zone's state");
+}
+
+/* Zone z's state at np host points: the points and the states they start from copied to the
+ * device's segment arrays, the states computed there and copied back. */
+static void cu_inout_points(vres_backend *b, const vres_inout_zone *z, const vres_donor *D, size_t np, const double *p,
+                            float *vel, float *rho)
+{
+    cuda_ctx *x = ctx_of(b);
+    const char *what = "a zone's state at its segments";
+    if (x->failed || !np || !grow_segments(x, np)) return;
+    cuda_couple *c = x->cp;
+    if (!ok(x, cudaMemcpy(c->spos, p, 3 * np * sizeof *p, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(c->svel, vel, 3 * np * sizeof *vel, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(c->srho, rho, np * sizeof *rho, cudaMemcpyHostToDevice), what))
+        return;
+    vres_inout_point_loop_cuda(np, *z, *D, c->spos, c->svel, c->srho);
+    if (launched(x, what) && ok(x, cudaMemcpy(vel, c->svel, 3 * np * sizeof *vel, cudaMemcpyDeviceToHost), what))
+        ok(x, cudaMemcpy(rho, c->srho, np * sizeof *rho, cudaMemcpyDeviceToHost), what);
+}
+
+/* Which of np host spots a fluid, buffer or inlet particle of this domain takes (cells current). */
+static void cu_inout_spots(vres_backend *b, size_t np, const double *p, const double *normal, double dp,
+                           uint8_t *state)
+{
+    cuda_ctx *x = ctx_of(b);
+    const char *what = "check a zone's spots";
+    if (x->failed || !np || !grow_segments(x, np)) return;
+    cuda_couple *c = x->cp;
+    if (!ok(x, cudaMemcpy(c->spos, p, 3 * np * sizeof *p, cudaMemcpyHostToDevice), what) ||
+        !ok(x, cudaMemcpy(c->snormal, normal, 3 * np * sizeof *normal, cudaMemcpyHostToDevice), what))
+        return;
+    vres_couple_walls w = {x->hc, x->dev.pos, x->dev.type, 0};
+    vres_inout_spot_loop_cuda(np, w, c->spos, c->snormal, dp, c->sstate);
+    if (launched(x, what)) ok(x, cudaMemcpy(state, c->sstate, np, cudaMemcpyDeviceToHost), what);
+}
+
 void vres_cuda_couple_hooks(vres_backend *b)
 {
     b->donor_view = cu_donor_view;
@@ -195,6 +249,10 @@ void vres_cuda_couple_hooks(vres_backend *b)
     b->couple_buffers = cu_couple_buffers;
     b->couple_shift = cu_couple_shift;
     b->couple_segments = cu_couple_segments;
+    b->inout_classify = cu_inout_classify;
+    b->inout_impose = cu_inout_impose;
+    b->inout_points = cu_inout_points;
+    b->inout_spots = cu_inout_spots;
 }
 
 void vres_cuda_couple_free(cuda_ctx *x)

@@ -133,7 +133,8 @@ static inline cuda_ctx *ctx_of(vres_backend *b)
 }
 
 /* Give backend b (opened by vres_backend_cuda_open) the coupling's hooks (donor_view,
- * couple_classify, couple_buffers, couple_shift, couple_segments). */
+ * couple_classify, couple_buffers, couple_shift, couple_segments) and the zones' (inout_classify,
+ * inout_impose, inout_points, inout_spots). */
 void vres_cuda_couple_hooks(vres_backend *b);
 
 /* Free the coupling's device buffers of x (nothing when it has none). */

@@ -338,13 +338,11 @@ static int fill(vres_inout *Z, inout_zone *zn, vres_backend *b, uint64_t *next_i
     uint8_t *state = vres_xcalloc(ns, sizeof *state);
     int rc = 0;
     for (int l = 0; l < zn->layers && rc == 0; l++) {
-        vres_donor D = self_donor(Z, b); /* after the last layer's sort */
-        vres_couple_walls w = {D.cells, D.pos, D.type, 0};
         for (size_t j = 0; j < ns; j++) {
             for (int a = 0; a < 3; a++) p[3 * j + a] = zn->pos[3 * j + a] + l * Z->dp * zn->z.n[a];
             mass[j] = Z->m;
-            state[j] = vres_couple_spot_taken(&w, &p[3 * j], &zn->normal[3 * j], Z->dp) ? VRES_SEG_WAIT : VRES_SEG_FLUX;
         }
+        b->inout_spots(b, ns, p, zn->normal, Z->dp, state); /* after the last layer's sort */
         vres_segments S = {p, zn->normal, zn->area, NULL, NULL, mass, zn->rho, zn->vel, state, VRES_FLUX_INTERP, NULL, NULL};
         rc = vres_couple_births(b, &S, ns, NULL, Z->dp, Z->m, VRES_INLET, Z->mk, next_id, &zn->L);
         if (rc == 0) rc = b->sort(b, VRES_CARRY_NONE);
@@ -391,8 +389,8 @@ int vres_inout_exchange(vres_inout *Z, vres_backend *b, double dt, uint64_t *nex
     for (int k = 0; k < Z->nz; k++) { /* the segments see the new time's fluid, before any type change */
         inout_zone *zn = &Z->zone[k];
         double net = 0; /* the zone's net inflow this step (kg) */
+        b->inout_points(b, &zn->z, &D, zn->nseg, zn->pos, zn->vel, zn->rho);
         for (size_t j = 0; j < zn->nseg; j++) {
-            vres_inout_state_at(&zn->z, &D, &zn->pos[3 * j], &zn->vel[3 * j], &zn->rho[j]);
             const double v[3] = {zn->vel[3 * j], zn->vel[3 * j + 1], zn->vel[3 * j + 2]};
             const double dm = vres_couple_dm(zn->rho[j], v, still, &zn->normal[3 * j], zn->area[j], dt);
             zn->mass[j] = vres_couple_accumulate(zn->mass[j], dm);

@@ -214,6 +214,15 @@ typedef struct vres_backend {
     /* Every inlet particle of zone z takes the zone's state; D is this domain as a donor (cells
      * current) for the extrapolation. */
     void (*inout_impose)(struct vres_backend *b, const vres_inout_zone *z, const vres_donor *D);
+    /* Zone z's state at the np points p (host, m) into vel and rho (host; in and out: an
+     * extrapolation without support keeps them); D as inout_impose's. */
+    void (*inout_points)(struct vres_backend *b, const vres_inout_zone *z, const vres_donor *D, size_t np,
+                         const double *p, float *vel, float *rho);
+    /* For np spots p with normals normal (host, m), state[j] (host) VRES_SEG_WAIT where one of
+     * this domain's fluid, buffer or inlet particles (cells current) lies within dp/2 (m), else
+     * VRES_SEG_FLUX. */
+    void (*inout_spots)(struct vres_backend *b, size_t np, const double *p, const double *normal, double dp,
+                        uint8_t *state);
     /* Free everything the backend holds (b itself is the caller's). */
     void (*close)(struct vres_backend *b);
 } vres_backend;
