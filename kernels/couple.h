@@ -600,23 +600,17 @@ VRES_HD static inline int vres_couple_event_deletes(int e)
 
 /* Add the events of the n slots (VRES_EV_*, ev) to the counts n_ev and their masses (mass,
  * kg) to m_ev [VRES_EV_COUNT], in slot order (so a run and its restart sum them to the same
- * bits on either device). A host loop: both backends call it on host arrays. */
-static inline void vres_couple_tally(size_t n, const uint8_t *ev, const double *mass, size_t *n_ev, double *m_ev)
+ * bits on either device), turning each event into the mark a removal reads (1: its particle is
+ * deleted, vres_couple_event_deletes; else 0) in the same pass. A host loop: the CPU backend
+ * runs it on its marks, the CUDA backend on a host copy that it then copies back. */
+static inline void vres_couple_tally(size_t n, uint8_t *ev, const double *mass, size_t *n_ev, double *m_ev)
 {
     for (size_t i = 0; i < n; i++) {
         const int e = ev[i];
         if (e != VRES_EV_NONE) n_ev[e]++, m_ev[e] += mass[i];
+        ev[i] = (uint8_t)vres_couple_event_deletes(e);
     }
 }
-
-/* Turn event i into the mark a removal reads: 1 when it deletes its particle, else 0. */
-VRES_HD static inline void vres_couple_mark_one(size_t i, uint8_t *ev)
-{
-    ev[i] = (uint8_t)vres_couple_event_deletes(ev[i]);
-}
-
-/* vres_couple_mark_loop_cpu / _cuda (n, ev). */
-VRES_PARTICLE_LOOP(vres_couple_mark_loop, vres_couple_mark_one, (uint8_t *ev), (ev))
 
 /* vres_couple_classify_loop_cpu / _cuda (n, reg, nreg, k, dim, pos, type, event). */
 VRES_PARTICLE_LOOP(vres_couple_classify_loop, vres_couple_classify_one,

@@ -25,6 +25,14 @@ typedef struct vres_wall_body {
     int floating;         /* 1 for a floating body (its particles' forces are summed for it) */
 } vres_wall_body;
 
+/* The index of the floating body among the nb of body whose particles have mk, nb when none. */
+VRES_HD static inline size_t vres_floating_body_of(const vres_wall_body *body, size_t nb, int mk)
+{
+    size_t k = 0;
+    while (k < nb && !(body[k].floating && body[k].mkbound == mk)) k++;
+    return k;
+}
+
 /* Moving or floating wall particle i (other types are left alone) to its body's transform: position
  * pos[3i..] = R xr[3i..] + d (m) from its reference position xr, velocity vel[3i..] (m/s) the
  * rigid field there, kept in mvel (the walls' own velocity, which mDBC's slip modes overwrite

@@ -219,8 +219,7 @@ static void cpu_body_forces(vres_backend *b, const double *c, double *ft)
     memset(ft, 0, 6 * x->nbodies * sizeof *ft);
     for (size_t i = 0; i < d->n; i++) {
         if (!vres_type_is_floating(d->type[i])) continue;
-        size_t k = 0;
-        while (k < x->nbodies && !(x->body[k].floating && x->body[k].mkbound == d->mk[i])) k++;
+        const size_t k = vres_floating_body_of(x->body, x->nbodies, d->mk[i]);
         if (k < x->nbodies) vres_float_share(i, d->pos, d->mass_p, x->ace, &c[3 * k], &ft[6 * k]);
     }
 }
@@ -443,7 +442,6 @@ static void cpu_count_events(cpu_ctx *x, size_t *n_ev, double *m_ev)
 {
     const vres_domain *d = x->d;
     vres_couple_tally(d->n, x->mark, d->mass_p, n_ev, m_ev);
-    for (size_t i = 0; i < d->n; i++) vres_couple_mark_one(i, x->mark);
 }
 
 /* This domain as a donor: the store's arrays and the cell list of the last sort. */

@@ -539,8 +539,7 @@ static void cu_body_forces(vres_backend *b, const double *c, double *ft)
         ok(x, cudaMemcpy(ace, x->face, 3 * k * sizeof *ace, cudaMemcpyDeviceToHost), what) &&
         ok(x, cudaMemcpy(mk, x->fmk, k * sizeof *mk, cudaMemcpyDeviceToHost), what))
         for (size_t i = 0; i < k; i++) {
-            size_t j = 0;
-            while (j < x->nbodies && !(x->hbody[j].floating && x->hbody[j].mkbound == mk[i])) j++;
+            const size_t j = vres_floating_body_of(x->hbody, x->nbodies, mk[i]);
             if (j < x->nbodies) vres_float_share(i, pos, mass, ace, &c[3 * j], &ft[6 * j]);
         }
     free(pos);

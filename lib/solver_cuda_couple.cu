@@ -79,7 +79,7 @@ static int put_tables(cuda_ctx *x, const vres_region *reg, const vres_donor *don
 }
 
 /* The events of the last pass (x->mark) tallied into n_ev and m_ev on the host, in slot order,
- * then the marks turned into remove's on the device. */
+ * and turned into remove's marks there (vres_couple_tally), which are copied back. */
 static void tally_events(cuda_ctx *x, size_t n, size_t *n_ev, double *m_ev)
 {
     cuda_couple *p = couple_of(x);
@@ -97,8 +97,7 @@ static void tally_events(cuda_ctx *x, size_t n, size_t *n_ev, double *m_ev)
     if (!any) return; /* no event: the marks are all 0 already */
     if (!ok(x, cudaMemcpy(p->hmass, x->dev.mass_p, n * sizeof *p->hmass, cudaMemcpyDeviceToHost), what)) return;
     vres_couple_tally(n, p->hev, p->hmass, n_ev, m_ev);
-    vres_couple_mark_loop_cuda(n, x->mark);
-    launched(x, what);
+    ok(x, cudaMemcpy(x->mark, p->hev, n, cudaMemcpyHostToDevice), what);
 }
 
 /* This domain as a donor: its device arrays and the cells of the last sort (hc: the geometry
