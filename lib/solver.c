@@ -97,6 +97,7 @@ static void save_start_all(run_set *set)
 {
     const double t0 = vres_prof_now();
     for (size_t k = 0; k < set->n; k++) set->b[k].save_start(&set->b[k]);
+    set->exchanged = 0;
     vres_prof_add(&set->prof, VRES_PROF_INTEGRATE, t0);
 }
 
@@ -170,6 +171,7 @@ static void integrate_all(run_set *set, double dt, int corrector, int shift)
 static int exchange_all(run_set *set, const run_cfg *c, double t, double dt)
 {
     const double t0 = vres_prof_now();
+    set->exchanged = set->couple != NULL;
     const int rc = vres_couple_exchange(set, c, t, dt) != 0 ? VRES_RUN_FAIL : VRES_RUN_OK;
     vres_prof_add(&set->prof, VRES_PROF_COUPLE, t0);
     return rc;
@@ -207,12 +209,16 @@ static int step_symplectic(vres_store *s, run_set *set, const run_cfg *c, run_re
        state the step ends with (the cells of the predicted state still hold every neighbour
        but those at the kernel's edge, where W vanishes) */
     if (walls) mdbc_all(set);
+    /* a blow-up of this step is caught before the exchange, which changes the particles: the
+       step's start can then still be put back as the last good state */
+    if (set->couple && (badmid = check_all(set, &k)) != (size_t)-1)
+        return vres_run_stop_unstable(s, set, c, r, f->dir, k, badmid, step + 1, t + dt, t, step);
     return exchange_all(set, c, t + dt, dt);
 }
 
 /* One Verlet step (an Euler step when euler) from time t of every domain, with the forces
  * already evaluated: the step, the walls, mDBC (with walls 1: the step's end is written), then
- * the coupling's exchange. */
+ * the coupling's exchange (which has nothing to do: a coupled run is refused with Verlet). */
 static int step_verlet(vres_store *s, run_set *set, const run_cfg *c, run_motion *m, double t, double dt, int euler,
                        int walls)
 {

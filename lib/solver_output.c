@@ -294,7 +294,8 @@ static int write_last_good(vres_store *s, const run_set *set, const run_cfg *c, 
 
 /* Stop after a blow-up: diagnose slot bad of domain k (the state after the failed step; none
  * when bad is (size_t)-1), put every domain's step-start state (the last good one) back, write
- * it as snap_last_good.h5 and say where. Returns VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the
+ * it as snap_last_good.h5 and say where; after a coupling's exchange (set->exchanged), which
+ * leaves no step start to put back, only say that the latest snapshot is the last good state. Returns VRES_RUN_UNSTABLE (VRES_RUN_FAIL when the
  * write fails). */
 int vres_run_stop_unstable(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const char *dir,
                            size_t k, size_t bad, long step, double t, double t0, long step0)
@@ -302,6 +303,11 @@ int vres_run_stop_unstable(vres_store *s, run_set *set, const run_cfg *c, const 
     if (bad != (size_t)-1) {
         vres_domain *d = &s->dom[set->dom[k].index];
         if (set->b[k].download(&set->b[k], d) == 0) vres_run_diagnose(d, c, &set->dom[k], bad, step, t);
+    }
+    if (set->exchanged) { /* the coupling's exchange made the trouble: the step's start is gone */
+        vres_error("the coupling's exchange at the end of step %ld changed the particles, so the step's start cannot "
+                   "be put back: nothing written; the latest snapshot in %s is the last good state", step, dir);
+        return VRES_RUN_UNSTABLE;
     }
     for (size_t j = 0; j < set->n; j++) set->b[j].restore_start(&set->b[j]);
     if (download_all(s, set) != 0) return VRES_RUN_FAIL;

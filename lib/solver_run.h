@@ -46,6 +46,8 @@ typedef struct run_set {
     size_t *nout;         /* [n] each domain's particles outside its box at the last check */
     vres_couple *couple;  /* the coupling of the domains (solver_couple.c); NULL with one domain */
     vres_prof prof;       /* wall time spent in each phase of the step so far (this run, not before a restart) */
+    int exchanged;        /* 1 from a step's coupling exchange to the next step's start: the exchange changed
+                             and reordered the particles, so the step-start copies no longer fit them */
 } run_set;
 
 /* The run's progress between outputs. */

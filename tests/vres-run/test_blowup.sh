@@ -36,3 +36,22 @@ expect_err 3 'unstable at step 2, t = [0-9.e-]+ s: time step [0-9.e-]+ s below D
     "$RUN" --tout 0.05 "$T/dt.h5" -o "$T/run2"
 expect 0 "its snap_last_good.h5 is readable" "$BIN/vres-info" "$T/run2/snap_last_good.h5"
 check "and holds step 1" grep -q -E 'time +[0-9.e-]+ s, step 1$' "$OUT"
+
+# a coupled run (two domains: cases/stiff_vres_front2d, the dam break through a refinement box)
+# stops the same way, and its snap_last_good.h5 is the step's start in every domain, which the
+# coupling's exchange at the step's end (conversions, creation, deletion, the sort) must not
+# have changed: restarted from it, the run meets the same particle at the same step. (Before
+# the check ran ahead of the exchange, a blow-up found after it wrote the step-start copies
+# over the exchanged particles: in cases/wedge_entry2d under mDBC, wall types on fluid
+# positions.)
+FRONT=$CASES/stiff_vres_front2d/stiff_vres_front2d_Def.xml
+"$BIN/vres-gencase" -q --set RhopOutMax=1010 "$FRONT" | "$BIN/vres-partition" -q - -o "$T/front.h5" ||
+    notok "gencase and partition the coupled dam break"
+expect_err 3 'unstable at step [0-9]+, t = [0-9.e-]+ s: fluid particle id [0-9]+ at .* outside RhopOutMin\.\.RhopOutMax = 700\.\.1010' \
+    "coupled: density above RhopOutMax, exit 3" "$RUN" --threads 1 --tout 0.05 "$T/front.h5" -o "$T/front"
+diag=$(grep -o 'unstable at step .*' "$ERR" | head -1)
+check "coupled: names the last good state" grep -q 'last good state .* written to .*/snap_last_good\.h5' "$ERR"
+expect_err 3 'unstable at step' "coupled: restarted from snap_last_good.h5, it stops again" \
+    "$RUN" --threads 1 --restart "$T/front/snap_last_good.h5" -o "$T/front"
+check "coupled: at the same step, the same particle, the same value ($diag)" \
+    [ "$(grep -o 'unstable at step .*' "$ERR" | head -1)" = "$diag" ]
