@@ -13,6 +13,7 @@
 #include "../kernels/sps.h"
 #include "../kernels/wendland.h"
 #include "cells.h"
+#include "solver_motion.h"
 #include "field.h"
 #include "log.h"
 #include "owner.h"
@@ -360,13 +361,14 @@ static int domain_load(const vres_store *s, size_t k, int mkbound, const force_c
     return rc;
 }
 
-/* The default centre of the body into L: its /Bodies centre, else its particles' mass-weighted
- * centroid. */
+/* The default centre of the body into L: where its /Bodies centre is at the store's time (a
+ * moving body's moved by its motion), else its particles' mass-weighted centroid. */
 static void default_centre(const vres_store *s, int mkbound, vres_body_load *L)
 {
     for (size_t b = 0; b < s->nbodies; b++)
         if (s->body[b].mkbound == mkbound) {
-            memcpy(L->centre, s->body[b].center, sizeof L->centre);
+            double v[3], angle;
+            vres_body_state(&s->body[b], s->time, s->dim, L->centre, v, &angle);
             L->centre_kind = VRES_CENTRE_BODY;
             return;
         }

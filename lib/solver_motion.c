@@ -191,6 +191,29 @@ void vres_motion_eval(const vres_body *b, double t, vres_motion_state *m)
     }
 }
 
+void vres_body_state(const vres_body *b, double t, int dim, double c[3], double v[3], double *angle)
+{
+    if (b->kind == VRES_FLOATING) {
+        const double *q = b->quat, s = sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        memcpy(c, b->center, 3 * sizeof *c);
+        memcpy(v, b->vel, 3 * sizeof *v);
+        *angle = dim == 2 ? 2 * atan2(q[2], q[0]) : 2 * atan2(s, fabs(q[0]));
+        return;
+    }
+    vres_motion_state m;
+    vres_motion_eval(b, t, &m);
+    const double *R = m.R;
+    for (int a = 0; a < 3; a++)
+        c[a] = R[3 * a] * b->center[0] + R[3 * a + 1] * b->center[1] + R[3 * a + 2] * b->center[2] + m.d[a];
+    double r[3] = {c[0] - m.p[0], c[1] - m.p[1], c[2] - m.p[2]};
+    v[0] = m.v[0] + m.w[1] * r[2] - m.w[2] * r[1];
+    v[1] = m.v[1] + m.w[2] * r[0] - m.w[0] * r[2];
+    v[2] = m.v[2] + m.w[0] * r[1] - m.w[1] * r[0];
+    /* 2D: R turns about y by a (R[0] = cos a, R[2] = sin a); 3D: trace R = 1 + 2 cos a */
+    double ca = (R[0] + R[4] + R[8] - 1) / 2;
+    *angle = dim == 2 ? atan2(R[2], R[0]) : acos(ca > 1 ? 1 : ca < -1 ? -1 : ca);
+}
+
 int vres_motion_check(const vres_body *b)
 {
     const vres_motion_seg *s = find_seg(b, b->mv_first);

@@ -15,6 +15,13 @@
  * Rotations turn right-handed about the axis axis_p1 -> axis_p2, which stays fixed in space. */
 void vres_motion_eval(const vres_body *b, double t, vres_motion_state *m);
 
+/* Where body b is at time t (s), whatever its kind: its centre c (m), the velocity v of that
+ * centre (m/s) and the angle (rad) of its rotation since t = 0 (dim 2: about y, right-handed,
+ * signed; 3: about its own axis, in [0, pi]). A floating body's are its store fields (a
+ * snapshot's holds them at its time); a moving body's are its motion evaluated at t, applied to
+ * its centre at t = 0 (the store's center, which vres-run does not move). */
+void vres_body_state(const vres_body *b, double t, int dim, double c[3], double v[3], double *angle);
+
 /* Check that b's motion is one vres_motion_eval can follow: every segment found, rotation
  * axes of non-zero length, no cycle of segments of zero duration. 0, or -1 after printing
  * why (naming the body's mkbound). */

@@ -16,6 +16,7 @@
 #include "fileio.h"
 #include "forces.h"
 #include "log.h"
+#include "solver_motion.h"
 #include "spectrum.h"
 #include "store.h"
 
@@ -33,7 +34,7 @@ static const vres_opt options[] = {
 
 /* Columns after time_s: short names (as --spectrum takes them) and TSV names with units. The
  * force coefficients come with --coef, the body's motion (centre, velocity, angle: /Bodies)
- * when the body is floating. */
+ * when the body is a moving or floating one. */
 enum { COL_FX, COL_FY, COL_FZ, COL_MX, COL_MY, COL_MZ, COL_CD, COL_CL, COL_CX, COL_CY, COL_CZ, COL_VX, COL_VY, COL_VZ,
        COL_ANGLE, NCOL };
 static const char *const col_name[NCOL] = {"fx", "fy", "fz", "mx", "my", "mz", "cd", "cl",
@@ -65,30 +66,28 @@ typedef struct snap {
 /* One table row. */
 typedef struct row {
     double time;         /* s */
-    double v[NCOL];      /* the columns (cd, cl NaN without --coef; the motion NaN for a body not floating) */
+    double v[NCOL];      /* the columns (cd, cl NaN without --coef; the motion NaN for a fixed wall) */
 } row;
 
-/* 1 when column k is printed: the coefficients with --coef, the motion for a floating body. */
-static int col_shown(const request *r, int floating, int k)
+/* 1 when column k is printed: the coefficients with --coef, the motion for a moving or floating body. */
+static int col_shown(const request *r, int body, int k)
 {
-    return k < COL_CD || (k <= COL_CL && r->ncoef) || (k >= COL_CX && floating);
+    return k < COL_CD || (k <= COL_CL && r->ncoef) || (k >= COL_CX && body);
 }
 
-/* The floating body of store s with mkbound mk, or NULL. */
-static const vres_body *floating_body(const vres_store *s, int mk)
+/* The moving or floating body of store s with mkbound mk, or NULL. */
+static const vres_body *store_body(const vres_store *s, int mk)
 {
     for (size_t k = 0; k < s->nbodies; k++)
-        if (s->body[k].kind == VRES_FLOATING && s->body[k].mkbound == mk) return &s->body[k];
+        if (s->body[k].mkbound == mk) return &s->body[k];
     return NULL;
 }
 
-/* The motion columns of floating body b into v: centre (m), velocity (m/s), and the angle
- * (rad) of its rotation since t = 0 (2D: about y, signed; 3D: about its axis, in [0, pi]). */
-static void body_motion(const vres_body *b, int dim, double *v)
+/* The motion columns of body b at the store's time t into v: centre (m), velocity (m/s), and the
+ * angle (rad) of its rotation since t = 0 (2D: about y, signed; 3D: about its axis, in [0, pi]). */
+static void body_motion(const vres_body *b, double t, int dim, double *v)
 {
-    for (int a = 0; a < 3; a++) v[COL_CX + a] = b->center[a], v[COL_VX + a] = b->vel[a];
-    const double *q = b->quat, s = sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    v[COL_ANGLE] = dim == 2 ? 2 * atan2(q[2], q[0]) : 2 * atan2(s, fabs(q[0]));
+    vres_body_state(b, t, dim, v + COL_CX, v + COL_VX, &v[COL_ANGLE]);
 }
 
 /* Report a usage error and exit 2, as the parser does. */
@@ -152,7 +151,7 @@ static request read_request(const vres_cli *cli)
     if (spec) {
         r.spectrum = column_index(spec);
         if (r.spectrum < 0)
-            vres_error("--spectrum %s: unknown column; one of fx fy fz mx my mz cd cl, and for a floating body cx cy "
+            vres_error("--spectrum %s: unknown column; one of fx fy fz mx my mz cd cl, and for a moving or floating body cx cy "
                        "cz vx vy vz angle", spec), bad = 1;
         else if ((r.spectrum == COL_CD || r.spectrum == COL_CL) && !coef)
             vres_error("--spectrum %s needs --coef U,L,RHO to compute the coefficients", spec), bad = 1;
@@ -230,7 +229,7 @@ static const char *body_type(const vres_store *s, int mk)
 
 /* The '#' header: what was summed, the centre, units and coefficient definitions, columns. */
 static void write_header(FILE *o, const request *r, const vres_store *s, const vres_body_load *L, size_t nsnap,
-                         int floating)
+                         int body)
 {
     fprintf(o, "# vres-forces: force and moment of the fluid on mkbound %d (%s walls, %zu particles in %zu domain%s) "
                "of %s (%zu snapshot%s)\n", r->mk, body_type(s, r->mk), L->nbody, L->ndomains,
@@ -257,12 +256,14 @@ static void write_header(FILE *o, const request *r, const vres_store *s, const v
     else if (r->ncoef)
         fprintf(o, "# cd = fx / (0.5 rho U^2 A), cl = fz / (0.5 rho U^2 A): U = %g m/s, A = %g m^2, rho = %g kg/m^3\n",
                 r->U, r->A, r->rho);
-    if (floating)
-        fprintf(o, "# floating body: cx..cz its centre, vx..vz its velocity (/Bodies), angle its rotation since t = 0 "
-                   "(%s)\n", s->dim == 2 ? "about y, right-handed" : "about its axis");
+    if (body)
+        fprintf(o, "# %s body: cx..cz its centre, vx..vz its velocity (%s), angle its rotation since t = 0 (%s)\n",
+                store_body(s, r->mk)->kind == VRES_FLOATING ? "floating" : "moving",
+                store_body(s, r->mk)->kind == VRES_FLOATING ? "/Bodies" : "its motion at the snapshot's time",
+                s->dim == 2 ? "about y, right-handed" : "about its axis");
     fprintf(o, "# time_s");
     for (int k = 0; k < NCOL; k++)
-        if (col_shown(r, floating, k)) fprintf(o, "\t%s", col_unit[k]);
+        if (col_shown(r, body, k)) fprintf(o, "\t%s", col_unit[k]);
     fputc('\n', o);
 }
 
@@ -282,19 +283,19 @@ static int check_coef_dim(const request *r, int dim)
     return 0;
 }
 
-/* The force rows of every input into rows[] and the header into o; *floating 1 when the body is
- * a floating one (its motion columns filled). 0, 1 after printing why, or 2 after a usage
+/* The force rows of every input into rows[] and the header into o; *body 1 when the body is
+ * a moving or floating one (its motion columns filled). 0, 1 after printing why, or 2 after a usage
  * error (--coef not fitting the case's dimension, --spectrum of a motion column for a body
- * that does not float). */
-static int compute_rows(FILE *o, const request *r, const snap *in, size_t n, row *rows, int *floating)
+ * that neither moves nor floats). */
+static int compute_rows(FILE *o, const request *r, const snap *in, size_t n, row *rows, int *body)
 {
     for (size_t i = 0; i < n; i++) {
         vres_store *s = vres_store_read(in[i].path);
         if (!s) return 1;
-        if (i == 0) *floating = floating_body(s, r->mk) != NULL;
-        if (i == 0 && (check_coef_dim(r, s->dim) != 0 || (r->spectrum >= COL_CX && !*floating))) {
-            if (r->spectrum >= COL_CX && !*floating)
-                vres_error("--spectrum %s: mkbound %d is not a floating body: it has no motion columns",
+        if (i == 0) *body = store_body(s, r->mk) != NULL;
+        if (i == 0 && (check_coef_dim(r, s->dim) != 0 || (r->spectrum >= COL_CX && !*body))) {
+            if (r->spectrum >= COL_CX && !*body)
+                vres_error("--spectrum %s: mkbound %d is neither a moving nor a floating body: it has no motion columns",
                            col_name[r->spectrum], r->mk);
             vres_error("Try 'vres-forces --help'.");
             vres_store_free(s);
@@ -306,7 +307,7 @@ static int compute_rows(FILE *o, const request *r, const snap *in, size_t n, row
             vres_store_free(s);
             return 1;
         }
-        if (i == 0) write_header(o, r, s, &L, n, *floating);
+        if (i == 0) write_header(o, r, s, &L, n, *body);
         vres_debug("%s: t %g s, %zu body particles (+ %zu where another domain owns), %zu touching fluid", in[i].path,
                    s->time, L.nbody, L.nshared, L.nwet);
         row *w = &rows[i];
@@ -316,8 +317,8 @@ static int compute_rows(FILE *o, const request *r, const snap *in, size_t n, row
         w->v[COL_CD] = L.force[0] / q;
         w->v[COL_CL] = L.force[2] / q;
         for (int k = COL_CX; k < NCOL; k++) w->v[k] = NAN;
-        const vres_body *fb = floating_body(s, r->mk);
-        if (fb) body_motion(fb, s->dim, w->v);
+        const vres_body *b = store_body(s, r->mk);
+        if (b) body_motion(b, s->time, s->dim, w->v);
         vres_store_free(s);
     }
     return 0;
@@ -350,12 +351,12 @@ static int spectrum(FILE *o, const request *r, const row *rows, size_t n)
 }
 
 /* The table rows into o. */
-static void write_rows(FILE *o, const request *r, const row *rows, size_t n, int floating)
+static void write_rows(FILE *o, const request *r, const row *rows, size_t n, int body)
 {
     for (size_t i = 0; i < n; i++) {
         fprintf(o, "%.9g", rows[i].time);
         for (int k = 0; k < NCOL; k++)
-            if (col_shown(r, floating, k)) fprintf(o, "\t%.8g", rows[i].v[k]);
+            if (col_shown(r, body, k)) fprintf(o, "\t%.8g", rows[i].v[k]);
         fputc('\n', o);
     }
 }
@@ -373,9 +374,9 @@ int main(int argc, char **argv)
     size_t len = 0;
     FILE *o = open_memstream(&text, &len);
     row *rows = vres_xcalloc(n + 1, sizeof *rows);
-    int floating = 0;
-    if (rc == 0) rc = compute_rows(o, &r, in, n, rows, &floating);
-    if (rc == 0) write_rows(o, &r, rows, n, floating);
+    int body = 0;
+    if (rc == 0) rc = compute_rows(o, &r, in, n, rows, &body);
+    if (rc == 0) write_rows(o, &r, rows, n, body);
     if (rc == 0 && r.spectrum >= 0 && spectrum(o, &r, rows, n) != 0) rc = 1;
     fclose(o);
     if (rc == 0) rc = vres_write_text(cli.output, text, len) == 0 ? 0 : 1;

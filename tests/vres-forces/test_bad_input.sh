@@ -45,8 +45,8 @@ bad 2 "malformed --centre" "--centre 0,0: must be three numbers" --mk 0 --centre
 bad 2 "unknown --spectrum column" "--spectrum lift: unknown column; one of fx fy fz mx my mz cd cl" \
     --mk 0 --spectrum lift "$T/run"
 bad 2 "--spectrum cl without --coef" "--spectrum cl needs --coef" --mk 0 --spectrum cl "$T/run"
-bad 2 "--spectrum of a motion column for a body that does not float" \
-    "--spectrum cz: mkbound 0 is not a floating body: it has no motion columns" --mk 0 --spectrum cz "$T/run"
+bad 2 "--spectrum of a motion column for a body that neither moves nor floats" \
+    "--spectrum cz: mkbound 0 is neither a moving nor a floating body: it has no motion columns" --mk 0 --spectrum cz "$T/run"
 bad 2 "--from without --spectrum" "--from applies to --spectrum only" --mk 0 --from 1 "$T/run"
 bad 2 "two inputs" "" --mk 0 "$T/run" "$T/tank.h5"
 

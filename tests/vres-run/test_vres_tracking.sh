@@ -60,6 +60,19 @@ check "the box moved 0.05 m with the block by 0.3 s" awk -v s="$last_shift" 'BEG
 check "box shift = the block's displacement (1e-12 m) in all 7 snapshots" awk -v e="$worst_body" -v n=$nsnap 'BEGIN {exit !(n == 7 && e <= 1e-12)}'
 check "box shift = the motion's closed form (1e-12 m)" awk -v e="$worst_form" 'BEGIN {exit !(e <= 1e-12)}'
 
+# ---- vres-forces' motion columns of a moving body: its centre and velocity by the motion at each
+# snapshot's time (the store's centre is the body's at t = 0), against the closed form
+expect 0 "vres-forces --mk 1 of the run (a moving body)" "$BIN/vres-forces" -q --mk 1 "$T/a" -o "$T/fa.tsv"
+check "its header names the moving body's motion columns" \
+    grep -q -P '^# time_s\tfx_N.*\tmz_Nm\tcx_m\tcy_m\tcz_m\tvx_m_s\tvy_m_s\tvz_m_s\tangle_rad$' "$T/fa.tsv"
+c0=$(attr /Bodies/B0/center "$(snap "$T/a" 0)" | head -1)
+worst_c=$(awk -F'\t' -v c0="$c0" '!/^#/ {t = $1; d = t <= 0.1 ? t * t : 0.01 + 0.2 * (t - 0.1)
+        v = t <= 0.1 ? 2 * t : 0.2; e = $8 - c0 - d; f = $11 - v; if (e < 0) e = -e; if (f < 0) f = -f
+        if (e > m) m = e; if (f > m) m = f; n++}
+    END {print (n == 7 ? m : "rows " n)}' "$T/fa.tsv")
+check "cx - cx(0) and vx follow the closed form in all 7 rows (1e-7: vres-forces prints 8 digits; largest $worst_c)" \
+    awk -v e="$worst_c" 'BEGIN {exit !(e + 0 == e && e <= 1e-7)}'
+
 # ---- the regions moved with it: per snapshot, D1's fluid inside the moved box, D1's buffer
 # inside the moved band, D0's fluid outside the moved hole (closed boxes, 1e-9 m)
 # inside FILE DOMAIN TYPE LO HI SHIFT [out]: the particles of TYPE of DOMAIN and how many of them lie
