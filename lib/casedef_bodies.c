@@ -136,11 +136,13 @@ static void read_dof(cd_ctx *c, xmlNodePtr fl, const char *name, const char *ali
     }
 }
 
-/* One <floating>: mass from massbody, masspart or rhopbody; centre and inertia from the
- * particles unless given (GenCase's way: particles of equal mass); DOFs; initial velocities. */
+/* One <floating>: mass from massbody, masspart, rhopbody or relativeweight (the body's density
+ * over rhop0, as DualSPHysics' examples write it: relativeweight="1.20" is rhopbody 1.2 rhop0);
+ * centre and inertia from the particles unless given (GenCase's way: particles of equal mass);
+ * DOFs; initial velocities. */
 static void read_floating(cd_ctx *c, xmlNodePtr e, vres_store *s)
 {
-    static const char *const attrs[] = {"mkbound", "rhopbody", NULL};
+    static const char *const attrs[] = {"mkbound", "rhopbody", "relativeweight", NULL};
     static const char *const kids[] = {"massbody", "masspart", "center", "inertia", "inertiafull",
                                        "translationDOF", "translation", "rotationDOF", "rotation",
                                        "linearvelini", "velini", "angularvelini", "omegaini", NULL};
@@ -154,6 +156,13 @@ static void read_floating(cd_ctx *c, xmlNodePtr e, vres_store *s)
     vres_domain *d = &s->dom[0];
     double rhop = 0, massbody = 0, masspart = 0;
     int has_rhop = cd_num(c, e, "rhopbody", 0, &rhop) == 0;
+    double relw = 0;
+    if (cd_num(c, e, "relativeweight", 0, &relw) == 0) {
+        if (has_rhop) cd_err(c, e, "only one of rhopbody and relativeweight may be given");
+        else if (!(relw > 0)) cd_err(c, e, "relativeweight must be greater than zero (%g)", relw);
+        has_rhop = 1;
+        rhop = relw * c->k.v[CK_RHOP0][0];
+    }
     int has_mass = cd_child_num(c, e, "massbody", "value", 0, &massbody) == 0;
     xmlNodePtr mp = cd_child(e, "masspart");
     int has_part = 0;

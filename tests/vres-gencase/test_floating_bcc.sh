@@ -3,7 +3,7 @@
 # body-centred cubic walls (<lattice bound="2">), <mkorientfluid>, <setshapemode>dp | real |
 # bound</setshapemode>, a cmt comment, a face-drawn tank open on the left and top (boxfill
 # "bottom | right | front | back"), a solid piston moving with <mvrectsinu>, a floating box of
-# given <massbody>, the water a <fillbox> of void, RigidAlgorithm, FtPause and a simulation
+# given <massbody> (and relativeweight, refused beside rhopbody or at 0), the water a <fillbox> of void, RigidAlgorithm, FtPause and a simulation
 # domain "default + 20%". vres-gencase reads it whole, with the particle counts worked out by
 # hand below; vres-run runs it for 0.1 s. The body, 40 kg, floats up: its particles span
 # z 0.4..0.8 and the water's reach 0.6, so with DBC's half-dp gaps 0.3 m of its 0.5 m are
@@ -95,6 +95,25 @@ check "shared by its 189 particles" near "$(values /Domains/D0/Mass "$T/fl.h5" |
 check "walls weigh rho0 dp^3, centres too" [ "$(values /Domains/D0/Mass "$T/fl.h5" | head -1599 | sort -u | awk '{printf "%.9g\n", $1}')" = 1 ]
 # the walls' box: the tank's centres at z -0.05 up to its faces' top 1.05; 20% of 1.1 above
 check "domain top: default + 20%" near "$(attr /Parameters/domain_max "$T/fl.h5" | sed -n 3p)" 1.27 1e-9
+
+# DualSPHysics' examples give a body's density as relativeweight, its ratio to rhop0
+# (examples/main/11_Floating: relativeweight="1.20"): the same body as rhopbody 500
+sed 's|<floating mkbound="50"> <massbody value="40" /> </floating>|<floating mkbound="50" relativeweight="0.5" />|' \
+    "$T/fl_Def.xml" >"$T/rw_Def.xml"
+sed 's|<floating mkbound="50"> <massbody value="40" /> </floating>|<floating mkbound="50" rhopbody="500" />|' \
+    "$T/fl_Def.xml" >"$T/rb_Def.xml"
+expect 0 "relativeweight 0.5: generates" "$BIN/vres-gencase" -q "$T/rw_Def.xml" -o "$T/rw.h5"
+expect 0 "rhopbody 500: generates" "$BIN/vres-gencase" -q "$T/rb_Def.xml" -o "$T/rb.h5"
+mrw=$(attr /Bodies/B0/mass "$T/rw.h5") mrb=$(attr /Bodies/B0/mass "$T/rb.h5")
+check "relativeweight 0.5 weighs what rhopbody 500 does ($mrw and $mrb kg; 189 x 500 x 0.1^3 / 2 = 47.25)" \
+    sh -c "[ '$mrw' = '$mrb' ] && awk -v m='$mrw' 'BEGIN {d = m - 47.25; exit !(d < 1e-9 && d > -1e-9)}'"
+sed 's|relativeweight="0.5"|relativeweight="0.5" rhopbody="500"|' "$T/rw_Def.xml" >"$T/rw2_Def.xml"
+expect_err 1 'rw2_Def\.xml:[0-9]+: only one of rhopbody and relativeweight may be given' "relativeweight and rhopbody: refused" \
+    "$BIN/vres-gencase" "$T/rw2_Def.xml" -o "$T/rw2.h5"
+check "relativeweight and rhopbody: nothing written" [ ! -e "$T/rw2.h5" ]
+sed 's|relativeweight="0.5"|relativeweight="0"|' "$T/rw_Def.xml" >"$T/rw0_Def.xml"
+expect_err 1 'rw0_Def\.xml:[0-9]+: relativeweight must be greater than zero \(0\)' "relativeweight 0: refused" \
+    "$BIN/vres-gencase" "$T/rw0_Def.xml" -o "$T/rw0.h5"
 
 expect 0 "vres-run runs it" "$BIN/vres-run" -q --threads 1 "$T/fl.h5" -o "$T/run"
 "$BIN/vres-forces" --mk 50 "$T/run" >"$T/body.tsv" 2>"$ERR" || notok "vres-forces on the body"
