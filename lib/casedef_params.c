@@ -473,6 +473,15 @@ static void read_domain(cd_ctx *c, xmlNodePtr simdom, pval *vals, vres_store *s,
     }
     vres_params_set(&s->params, "domain_min", 3, s->domain_min, "m", custom || old ? "xml" : "auto");
     vres_params_set(&s->params, "domain_max", 3, s->domain_max, "m", custom || old ? "xml" : "auto");
+    /* a domain given in part: the axes whose both ends are "default" still span the particles'
+       extent, which a periodic axis's period needs to know (vres-run adds dp there) */
+    double dflt[3];
+    int anydflt = 0;
+    for (int k = 0; k < 3; k++) {
+        dflt[k] = mode[0][k] == CD_DOM_DEFAULT && mode[1][k] == CD_DOM_DEFAULT && !old;
+        anydflt |= dflt[k] != 0;
+    }
+    if ((custom || old) && anydflt) vres_params_set(&s->params, "domain_default", 3, dflt, "", "xml");
     for (int k = 0; k < 3; k++)
         if (s->domain_min[k] > bbmin[k] || s->domain_max[k] < bbmax[k]) {
             vres_warn("%s: the simulation domain (%g..%g along %s) leaves particles out (they span %g..%g); "

@@ -288,7 +288,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     int sorted = 0; /* 1 when every domain is in cell order for its positions now: after a coupled
                        step's exchange (which sorts last), when no particle was excluded since */
     run_motion m = {t, vres_xcalloc(s->nbodies + 1, sizeof *m.mv0), vres_xcalloc(s->nbodies + 1, sizeof *m.mv),
-                    vres_floats_open(s, c->g)};
+                    vres_floats_open(s, c->g, c->ftpause)};
     for (size_t k = 0; k < s->nbodies; k++) vres_motion_eval(&s->body[k], t, &m.mv0[k]);
     vres_couple_follow(set->couple, m.mv);
     if (check_start(s, set, c, &m, t, step) != 0) rc = VRES_RUN_FAIL;
@@ -304,6 +304,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         size_t kmin;
         if (sort_all(set, c, VRES_CARRY_NONE, sorted, t) != 0) { rc = VRES_RUN_FAIL; break; }
         save_start_all(set);
+        vres_floats_hold(m.fl, t);
         vres_floats_begin(m.fl);
         dt = forces_all(set, c, c->verlet && c->shift != 0, &kmin, &amax, &visc);
         if (!(dt >= c->dtmin)) {

@@ -22,7 +22,7 @@ static const char *const known_params[] = {
     "ViscoBoundFactor", "DensityDT", "DensityDTvalue", "Shifting", "ShiftCoef", "ShiftTFS", "ShiftAdvCoef",
     "ShiftAdvALE", "ShiftAdvNCPress", "RigidAlgorithm", "FtPause", "CoefDtMin", "DtIni", "DtMin", "DtFixed",
     "DtAllParticles", "TimeMax", "TimeOut", "RhopOutMin", "RhopOutMax", "MinFluidStop", "periodic",
-    "periodic_xinc", "periodic_yinc", "periodic_zinc", "domain_min", "domain_max", "lattice", "modules", "run_t0",
+    "periodic_xinc", "periodic_yinc", "periodic_zinc", "domain_min", "domain_max", "domain_default", "lattice", "modules", "run_t0",
     "run_next_due", "run_next_snap", "run_nfluid0", "run_excluded", "buffsizeh", "overlappingh", "run_mass0",
     "run_next_id", "run_vres_order", "run_vres_cond2", "run_vres_flux", "run_vres_excess", NULL};
 
@@ -58,9 +58,9 @@ static void not_impl(int *bad, const char *name, double v, const char *what, con
 
 /* The periodic axes and the cells' box of domain c. An axis is periodic by the store's parameter
  * periodic; its period is the simulation domain's length along it plus dp when that domain is
- * the particles' extent (origin auto: the lattice then repeats with its spacing across the
- * boundary, as DualSPHysics' map limits with periodic axes), and the domain's length when the
- * case fixed it, the same for every domain (the root's dp). Shifted periodicity (XPeriodicIncZ...) is refused. Every domain has the
+ * the particles' extent along it (origin auto, or the axis flagged in domain_default when the
+ * case gave the domain in part: the lattice then repeats with its spacing across the boundary,
+ * as DualSPHysics' map limits with periodic axes), and the domain's length when the case fixed it, the same for every domain (the root's dp). Shifted periodicity (XPeriodicIncZ...) is refused. Every domain has the
  * simulation domain's box for now (a sub-domain's own, its region with its buffer band, comes
  * with the coupling). 0, or -1 after printing why. */
 static int periodic_box(const vres_store *s, run_dom *c)
@@ -69,12 +69,14 @@ static int periodic_box(const vres_store *s, run_dom *c)
     static const char axis[3] = {'x', 'y', 'z'};
     const vres_param *per = vres_params_find(&s->params, "periodic");
     const vres_param *dom = vres_params_find(&s->params, "domain_min");
+    const vres_param *dflt = vres_params_find(&s->params, "domain_default");
     int fixed = dom && dom->origin && strcmp(dom->origin, "auto") != 0;
-    /* the root's dp: every domain shares the root's period (a child's own dp would give it a
-       shorter one, and a box reaching a periodic edge would wrap its particles short of it) */
-    double half = fixed ? 0 : 0.5 * s->dom[0].dp;
     int bad = 0;
     for (int a = 0; a < 3; a++) {
+        /* the root's dp: every domain shares the root's period (a child's own dp would give it a
+           shorter one, and a box reaching a periodic edge would wrap its particles short of it) */
+        int extent = !fixed || (dflt && dflt->n == 3 && dflt->v[a] != 0);
+        double half = extent ? 0.5 * s->dom[0].dp : 0;
         c->periodic[a] = per && per->n == 3 && per->v[a] != 0;
         c->box_lo[a] = s->domain_min[a] - (c->periodic[a] ? half : 0);
         c->box_hi[a] = s->domain_max[a] + (c->periodic[a] ? half : 0);
@@ -291,8 +293,6 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
         if (set->dom[k].nfloating) { /* what floating bodies could be asked for beyond vres-run's SPH rigid bodies */
             double v = vres_params_get(P, "RigidAlgorithm", 1);
             if (v != 1) not_impl(&bad, "RigidAlgorithm", v, "floating bodies without SPH contact", "1 (SPH)");
-            if ((v = vres_params_get(P, "FtPause", 0)) != 0)
-                not_impl(&bad, "FtPause", v, "floating bodies held at the start", "0");
             break;
         }
 
@@ -353,6 +353,8 @@ int vres_run_read_config(const vres_store *s, const vres_run_opts *o, run_cfg *c
     if (!(c->tmax > 0)) vres_error("no end time: the store has no TimeMax; give --tmax T"), bad = 1;
     if (!(c->tout > 0)) vres_error("no output interval: the store has no TimeOut; give --tout DT"), bad = 1;
     if (c->tmax > 0 && check_track_until(s, c) != 0) bad = 1;
+    c->ftpause = vres_params_get(P, "FtPause", 0);
+    if (!(c->ftpause >= 0)) vres_error("FtPause=%g: must not be negative", c->ftpause), bad = 1;
     c->dtmin = vres_params_get(P, "DtMin", 0);
     if (!(c->dtmin > 0)) { /* from the finest domain: its steps are the shortest */
         double h = set->dom[0].h;

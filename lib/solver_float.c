@@ -110,13 +110,14 @@ static void accel(const vres_floats *f, const vres_float_body *b, const vres_flo
     for (int a = 0; a < 3; a++) al[a] = b->rdof[a] ? al[a] : 0;
 }
 
-vres_floats *vres_floats_open(const vres_store *s, const double g[3])
+vres_floats *vres_floats_open(const vres_store *s, const double g[3], double pause)
 {
     size_t n = 0;
     for (size_t k = 0; k < s->nbodies; k++) n += s->body[k].kind == VRES_FLOATING;
     if (!n) return NULL;
     vres_floats *f = vres_xcalloc(1, sizeof *f);
     f->dim = s->dim;
+    f->pause = pause;
     memcpy(f->g, g, sizeof f->g);
     f->b = vres_xcalloc(n, sizeof *f->b);
     f->nbodies = s->nbodies;
@@ -160,6 +161,11 @@ void vres_floats_close(vres_floats *f)
     free(f->c);
     free(f->ft);
     free(f);
+}
+
+void vres_floats_hold(vres_floats *f, double t)
+{
+    if (f) f->held = t < f->pause;
 }
 
 void vres_floats_begin(vres_floats *f)
@@ -221,7 +227,7 @@ void vres_floats_step(vres_floats *f, vres_backend *b, size_t nb, double dt, int
 {
     if (!f) return;
     gather(f, b, nb);
-    for (size_t j = 0; j < f->n; j++) {
+    for (size_t j = 0; j < f->n && !f->held; j++) {
         double A[3], al[3];
         /* the accelerations of the state the forces were computed at */
         accel(f, &f->b[j], phase == VRES_FLOAT_CORRECT ? &f->b[j].now : &f->b[j].start, A, al);
@@ -242,8 +248,8 @@ void vres_floats_transforms(const vres_floats *f, vres_motion_state *mv)
         for (int a = 0; a < 3; a++) {
             const double *ca = b->anchor.c;
             m->d[a] = b->now.c[a] - (m->R[3 * a] * ca[0] + m->R[3 * a + 1] * ca[1] + m->R[3 * a + 2] * ca[2]);
-            m->v[a] = b->now.v[a];
-            m->w[a] = b->now.w[a];
+            m->v[a] = f->held ? 0 : b->now.v[a];
+            m->w[a] = f->held ? 0 : b->now.w[a];
             m->p[a] = b->now.c[a];
         }
     }

@@ -52,6 +52,8 @@ typedef struct vres_floats {
     size_t nbodies;        /* the store's bodies (moving and floating) */
     double *c;             /* [3 nbodies] centres handed to the backends' sums, by store index (m) */
     double *ft;            /* [6 nbodies] one backend's sums, by store index */
+    double pause;          /* FtPause (s): the bodies are held where they start until this time */
+    int held;              /* 1 while they are held (the step's start before pause): summed, not moved */
 } vres_floats;
 
 /* The phases of a step that move the bodies. */
@@ -66,8 +68,15 @@ typedef struct vres_floats {
 int vres_float_check(const vres_body *b, int dim);
 
 /* The floating bodies of store s (their state from s->body: centre, quat, vel, omega), gravity
- * g (m/s^2); NULL when it has none. Anchored at their state now. */
-vres_floats *vres_floats_open(const vres_store *s, const double g[3]);
+ * g (m/s^2), held until time pause (s; DualSPHysics' FtPause, 0 for none); NULL when it has
+ * none. Anchored at their state now. */
+vres_floats *vres_floats_open(const vres_store *s, const double g[3], double pause);
+
+/* Whether the bodies are held in the step that starts at time t (s): before the pause ends
+ * their forces are summed but they do not move and their particles' velocity is zero; after
+ * it they go on from their state (the case's initial velocities, when it gives them). Nothing
+ * when f is NULL. */
+void vres_floats_hold(vres_floats *f, double t);
 
 /* Free f (NULL is fine). */
 void vres_floats_close(vres_floats *f);

@@ -38,6 +38,7 @@ typedef struct run_cfg {
     int kernel;           /* VRES_KERNEL_CUBIC (Kernel=1, with its tensile correction) or VRES_KERNEL_WENDLAND (2) */
     double ddt_delta;     /* its coefficient delta */
     double g[3];          /* gravity (m/s^2) */
+    double ftpause;       /* FtPause (s): floating bodies held where they start until this time */
     double tmax;          /* end time (s) */
     double tout;          /* time between snapshots (s) */
     double dtmin;         /* time steps below this (s) stop the run as unstable (CoefDtMin: from the finest h) */

@@ -45,6 +45,9 @@ void vres_run_diagnose(const vres_domain *d, const run_cfg *c, const run_dom *dc
     else if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]))
         snprintf(what, sizeof what, "non-finite velocity (%g, %g, %g) m/s", v[0], v[1], v[2]);
     else if (!isfinite(d->rho[i])) snprintf(what, sizeof what, "non-finite density %g", d->rho[i]);
+    else if (!vres_run_in_box(c, dc, x) && vres_type_acts_fluid(d->type[i]))
+        snprintf(what, sizeof what, "outside the simulation domain (%g..%g, %g..%g, %g..%g m) at the start",
+                 dc->box_lo[0], dc->box_hi[0], dc->box_lo[1], dc->box_hi[1], dc->box_lo[2], dc->box_hi[2]);
     else if (!vres_run_in_box(c, dc, x))
         snprintf(what, sizeof what, "a wall particle left the simulation domain (walls cannot be excluded)");
     else

@@ -96,6 +96,25 @@ err=$(paste "$T/p0" "$T/p2" | awk -v a="$ang" -v cx0="$cx0" -v cz0="$cz0" -v cx=
      ex = cx + c * rx + s * rz - $8; ez = cz - s * rx + c * rz - $10; e = sqrt(ex * ex + ez * ez); if (e > m) m = e}
     END {printf "%g", m}')
 check "body 1's particles turned rigidly about its centre (largest error $err m)" near "$err" 0 1e-9
+# FtPause (DualSPHysics' warm-up): held for the first 0.05 s, body 1 has not moved at 0.05 s
+# (centre and orientation exactly its start), then falls from rest and turns at its initial
+# 3 rad/s from the first step that starts at or after 0.05 s, so by 0.1 s it has dropped
+# g (t - tp)^2 / 2 and turned 3 (t - tp) with tp within a step (1.5e-4 s here) of 0.05 s
+"$BIN/vres-gencase" -q --set FtPause=0.05 "$T/fl_Def.xml" -o "$T/fp.h5" || notok "gencase with FtPause 0.05"
+expect 0 "FtPause 0.05: run 0.1 s" "$BIN/vres-run" --threads 1 "$T/fp.h5" -o "$T/fp"
+P1=$T/fp/snap_00001.h5 P2=$T/fp/snap_00002.h5
+check "FtPause: body 1 where it started at t = $(attr /time "$P1") s" \
+    [ "$(attr /Bodies/B0/center "$P1" | tr '\n' ' ')" = "$(attr /Bodies/B0/center "$T/fp/snap_00000.h5" | tr '\n' ' ')" -a \
+      "$(attr /Bodies/B0/quat "$P1" | tr '\n' ' ')" = "1 0 0 0 " ]
+t2=$(attr /time "$P2")
+read -r _ _ pz <<<"$(attr /Bodies/B0/center "$P2" | tr '\n' ' ')"
+read -r pw _ py _ <<<"$(attr /Bodies/B0/quat "$P2" | tr '\n' ' ')"
+check "FtPause: then it falls from rest (drop $(awk -v a="$cz0" -v b="$pz" 'BEGIN {print a - b}') m, g (t - 0.05)^2/2 = $(awk -v t="$t2" 'BEGIN {print 9.81 * (t - 0.05)^2 / 2}') m)" \
+    awk -v d="$(awk -v a="$cz0" -v b="$pz" 'BEGIN {print a - b}')" -v t="$t2" \
+    'BEGIN {lo = 9.81 * (t - 0.05 - 1.5e-4)^2 / 2; hi = 9.81 * (t - 0.05)^2 / 2; exit !(d >= lo - 1e-9 && d <= hi + 1e-9)}'
+check "FtPause: and turns at 3 rad/s ($(awk -v w="$pw" -v y="$py" 'BEGIN {print 2 * atan2(y, w)}') rad)" \
+    awk -v a="$(awk -v w="$pw" -v y="$py" 'BEGIN {print 2 * atan2(y, w)}')" -v t="$t2" \
+    'BEGIN {lo = 3 * (t - 0.05 - 1.5e-4); hi = 3 * (t - 0.05); exit !(a >= lo - 1e-9 && a <= hi + 1e-9)}'
 check "body 2 (every freedom fixed) has not moved" [ "$(attr /Bodies/B1/center "$S2")" = "$(attr /Bodies/B1/center "$S0")" ]
 fz=$(attr /Bodies/B1/force "$S2" | sed -n 3p)
 check "body 2 is pushed up by the water (force z $fz N/m > 0)" awk -v f="$fz" 'BEGIN {exit !(f > 0)}'
@@ -208,8 +227,7 @@ check "its last angle ($fang rad) is 2 atan2(q_y, q_w)" near "$fang" "$(attr /Bo
 check "a fixed wall has no motion columns" sh -c "grep '^# time_s' '$T/f0.tsv' | grep -qv cz_m"
 
 # (mDBC walls with floating bodies: tests/vres-run/test_mdbc_floating.sh)
-for kv in "FtPause=0.1:FtPause=0.1 \(floating bodies held at the start\) is not implemented yet" \
-          "RigidAlgorithm=0:RigidAlgorithm=0 \(floating bodies without SPH contact\) is not implemented yet"; do
+for kv in "RigidAlgorithm=0:RigidAlgorithm=0 \(floating bodies without SPH contact\) is not implemented yet"; do
     "$BIN/vres-gencase" -q --dp 0.04 --set "${kv%%:*}" "$T/box.xml" -o "$T/k.h5" || notok "gencase with ${kv%%:*}"
     expect_err 1 "${kv#*:}" "${kv%%:*} with a floating body refused" "$ASAN/vres-run" "$T/k.h5" -o "$T/k"
     nothing_in "$T/k" "nothing written"

@@ -74,3 +74,29 @@ check "every particle found by id ($1)" [ "$1" -eq 100 ]
 check "every particle inside the period [0, 0.1) m ($2 outside)" [ "$2" -eq 0 ]
 check "positions are the wrapped uniform fall (error $3 m)" awk -v e="$3" 'BEGIN {exit !(e < 6e-5)}'
 check "velocities are g t (error $4 m/s)" awk -v e="$4" 'BEGIN {exit !(e < 1.2e-4)}'
+
+# The same box periodic along x only (XPeriodicIncZ 0), falling along x (gravity (1, 0, 0)),
+# with a <simulationdomain> given in part, as DualSPHysics' examples write it (x "default", z
+# "default + 50%"): along x the domain is still the particles' extent, so the period is that
+# extent plus dp, 0.1 m (examples/main/11_Floating/CaseFloatingSphereVal2D: its floor reaches
+# both periodic ends). Taking the given domain's 0.09 m instead put the last column on the
+# domain's edge: the run stopped before its first step.
+sed -e 's|<gravity x="1" y="0" z="-2" />|<gravity x="1" y="0" z="0" />|' \
+    -e 's|<parameter key="XZPeriodic" value="1" />|<parameter key="XPeriodicIncZ" value="0" />\n            <simulationdomain> <posmin x="default" y="default" z="default" /> <posmax x="default" y="default" z="default + 50%" /> </simulationdomain>|' \
+    "$T/box_Def.xml" >"$T/boxx_Def.xml"
+expect 0 "gencase the box periodic in x, its domain given in part" "$BIN/vres-gencase" "$T/boxx_Def.xml" -o "$T/boxx.h5"
+check "the store flags x as spanning the particles (domain_default)" \
+    [ "$(attr /Parameters/domain_default "$T/boxx.h5" | head -1)" = 1 ]
+expect 0 "run 0.5 s of fall along x" "$BIN/vres-run" "$T/boxx.h5" -o "$T/runx"
+check "modules name periodic x" grep -q 'periodic(x)' "$ERR"
+t=$(awk 'END {print $1}' "$T/runx/run.tsv")
+paste <(values /Domains/D0/Id "$T/runx/snap_00001.h5") <(values /Domains/D0/Position "$T/runx/snap_00001.h5" | paste - - -) |
+    sort -n >"$T/px"
+res=$(join "$T/p0" "$T/px" | awk -v t="$t" '
+    function wrap(u) { while (u < 0) u += 0.1; while (u >= 0.1) u -= 0.1; return u }
+    { dx = $5 - wrap($2 + 0.5 * t * t); if (dx > 0.05) dx -= 0.1; if (dx < -0.05) dx += 0.1
+      dz = $7 - $4; e = dx * dx + dz * dz; if (e > emax) emax = e; n++ }
+    END { printf "%d %.3g", n, sqrt(emax) }')
+set -- $res
+check "x-periodic: every particle found ($1) and the wrapped uniform fall, period 0.1 m (error $2 m)" \
+    awk -v n="$1" -v e="$2" 'BEGIN {exit !(n == 100 && e < 6e-5)}'
