@@ -34,7 +34,7 @@ V       := $(RUNS)/validate
 VALIDATE ?= dambreak_front2d:0.02 dambreak_front2d:0.01 hydrostatic_profile2d:0.02 \
             poiseuille2d:5e-5 couette2d:5e-5 poiseuille_mdbc2d:5e-5 cavity_re100:0.02 \
             dambreak_lobovsky2d:0.01 ritter2d:0.05 taylor_green2d:0.02 cavity_re1000:0.025 \
-            floating_box2d: floating_heavy2d: wedge: \
+            floating_box2d: floating_heavy2d: wedge: wedge_entry2d: \
             stiff_rest2d: stiff_impact2d: stiff_lowvisc2d: stiff_sps2d: stiff_tinydp2d: stiff_float_light2d: \
             stiff_vres_front2d: stiff_vres_dpratio4_2d: stiff_vres_nested3_2d: stiff_vres_corner2d: \
             stiff_vres_siblings2d: tank_vres3d: dambreak_vres3d: channel_inout2d: poiseuille_inout2d: \

@@ -53,6 +53,7 @@ dambreak2d 1 - - -
 cylinder_re200 2 - - -
 tandem_cylinders 3 - 1,2 1,1,2
 wedge 2 1 - 1,1
+wedge_entry2d 2 - 1 1,1
 EOF
 
 # Geometry checks that follow from the cases' convention: pointref = Dp/2 puts particles at
