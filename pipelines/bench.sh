@@ -57,7 +57,7 @@
 # default bin/), STEPSPHASE (200), PHASE_THREADS (2, or 1 on one core), STEPSSCALE (20), SCALE_PS
 # (2e7 particle-steps), SCALE_REPEATS (3),
 # SCALE_THREADS (likewise), SCALE2D_DPS ("0.01 0.0045 0.002 0.0014"), SCALE3D_DPS ("0.02 0.01
-# 0.0065 0.0045"). BENCH_TABLES names also "phases" and "scaling". The coupled runs set
+# 0.0065 0.0045"), ROOF_THREADS (likewise). BENCH_TABLES names also "phases", "scaling" and "roofline". The coupled runs set
 # OMP_WAIT_POLICY=passive unless it is set: on a busy machine spinning threads only steal time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -72,7 +72,7 @@ MEM3D_GIB=${MEM3D_GIB:-1}
 DPVRES=${DPVRES:-0.01}
 WARMVRES=${WARMVRES:-0.5}
 STEPSVRES=${STEPSVRES:-1000}
-BENCH_TABLES=${BENCH_TABLES:-2d 3d loop vres phases scaling}
+BENCH_TABLES=${BENCH_TABLES:-2d 3d loop vres phases scaling roofline}
 TH2=$(($(nproc) < 2 ? 1 : 2))
 STEPSPHASE=${STEPSPHASE:-200}
 PHASE_THREADS=${PHASE_THREADS:-$TH2}
@@ -386,4 +386,48 @@ if want scaling; then
         rm -f "$out/scale$dim.runs"
       done
     done
+fi
+
+# Table 7 (roofline): the machine's roofs, measured by pipelines/roofline.c (double-precision
+#   FMA peak and a STREAM-style triad's bandwidth, 1 and ROOF_THREADS threads; compiled here
+#   with cc -O2 -mavx2 -mfma -fopenmp, skipped where that fails), and where the interaction
+#   stands under them: for the 2D dam break at dp 0.01 (21k particles) and the 3D one at dp
+#   0.02 (17k), one run of about STEPS steps at ROOF_THREADS threads, its interactions per
+#   second (pairs within 2h) times the flops of one pair, counted from kernels/sph.h's pair
+#   terms for these scenes (fluid-fluid pair, Wendland, artificial viscosity, Fourtakas
+#   diffusion): 3D 86 (distance 8 with the sqrt, kernel 6, grad W 3, relative velocity 3,
+#   1/(r^2+eta^2) 2, continuity 7, 1/rho_b 1, pressure 10, viscosity 19 for approaching pairs,
+#   largest rate 1, diffusion 25 with Fourtakas' series) and 2D 72 (the y terms left out);
+#   the two divisions and the sqrt count one flop each though they take several FMA slots,
+#   and the pairs beyond 2h that the cells offer and the test rejects count nothing, so the
+#   percentage understates the loop's use of the machine. The memory column: the state each
+#   force evaluation must at least read and write, 2 x 218 B per particle (the bytes vres-run
+#   holds per particle, pipelines/reports/memory.txt), two evaluations per Symplectic step,
+#   as GB/s at the measured particle-steps per second, against the triad's bandwidth.
+ROOF_THREADS=${ROOF_THREADS:-$TH2}
+if want roofline; then
+    if ${CC:-cc} -O2 -mavx2 -mfma -fopenmp pipelines/roofline.c -o "$out/roofline" 2>/dev/null; then
+        printf '\n# roofline: the machine (pipelines/roofline.c: best of 5; FMA chains of AVX2 doubles; triad of 3 x 256 MiB)\n'
+        printf 'threads\tpeak_gflops\ttriad_gbs\n'
+        OMP_NUM_THREADS=$ROOF_THREADS "$out/roofline" "$ROOF_THREADS" | tee "$out/roofs.tsv"
+        peak=$(awk -v t="$ROOF_THREADS" '$1 == t {print $2}' "$out/roofs.tsv")
+        bw=$(awk -v t="$ROOF_THREADS" '$1 == t {print $3}' "$out/roofs.tsv")
+        printf '\n# roofline: the interaction under those roofs, %s threads, about %s steps, one run each\n' "$ROOF_THREADS" "$STEPS"
+        printf 'case\tparticles\tinteractions_per_s\tflops_per_pair\tgflops\tpct_of_peak\tstate_gbs\tpct_of_triad\n'
+        gen dambreak2d-20k "$DB" --dp 0.01
+        gen scale3-0.02 "$DB3" --dp 0.02
+        for c in "dambreak2d-20k 72" "scale3-0.02 86"; do
+            set -- $c
+            rd=$out/run-roof-$1
+            rm -rf "$rd"
+            OMP_NUM_THREADS=$ROOF_THREADS "$BIN/vres-run" -q --threads "$ROOF_THREADS" --tmax "$(tmax_for "$out/$1.h5" "$STEPS")" \
+                --tout "$(tmax_for "$out/$1.h5" "$STEPS")" "$out/$1.h5" -o "$rd"
+            read -r _ ps is _ <<<"$(figures "$rd")"
+            awk -v name="$1" -v n="$(particles "$out/$1.h5")" -v is="$is" -v f="$2" -v ps="$ps" -v pk="$peak" -v bw="$bw" 'BEGIN {
+                g = is * f / 1e9; s = ps * 2 * 2 * 218 / 1e9
+                printf "%s\t%d\t%.4g\t%d\t%.2f\t%.0f\t%.2f\t%.0f\n", name, n, is, f, g, 100 * g / pk, s, 100 * s / bw }'
+        done
+    else
+        printf '\n# roofline: pipelines/roofline.c does not compile here (cc -mavx2 -mfma -fopenmp): skipped\n'
+    fi
 fi

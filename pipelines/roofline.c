@@ -1,0 +1,71 @@
+/* pipelines/roofline.c - the machine's two roofs for pipelines/bench.sh's roofline table (not
+ * part of the tools): the double-precision peak of fused multiply-adds and the memory
+ * bandwidth of a STREAM-style triad, each at 1 and N OpenMP threads.
+ *
+ *   cc -O2 -mavx2 -mfma -fopenmp pipelines/roofline.c -o roofline && ./roofline [THREADS]
+ *
+ * prints "threads peak_gflops triad_gbs" lines. Peak: each thread runs 10 independent chains
+ * of 4-wide AVX2 FMAs (enough to cover the FMA latency on current x86 cores), 2 flops per lane
+ * and FMA, best of 5 repetitions. Triad: a[i] = b[i] + s c[i] over 3 arrays of 2^25 doubles
+ * (768 MiB, far beyond any cache), 24 bytes per element counted (the write-allocate read of a
+ * not counted, as STREAM does), best of 5. */
+#include <immintrin.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define CHAINS 10            /* independent FMA chains per thread */
+#define FMA_ITERS 100000000L /* iterations of the chains per thread and repetition */
+#define TRIAD_N (1L << 25)   /* elements per triad array */
+#define REPS 5               /* repetitions; the best one counts */
+
+/* GFLOP/s of FMAs on nt threads. */
+static double peak(int nt)
+{
+    double best = 0;
+    for (int rep = 0; rep < REPS; rep++) {
+        double sink = 0, t0 = omp_get_wtime();
+#pragma omp parallel num_threads(nt) reduction(+ : sink)
+        {
+            __m256d acc[CHAINS], m = _mm256_set1_pd(0.999999), add = _mm256_set1_pd(1e-7);
+            for (int k = 0; k < CHAINS; k++) acc[k] = _mm256_set1_pd(1.0 + k);
+            for (long i = 0; i < FMA_ITERS; i++)
+                for (int k = 0; k < CHAINS; k++) acc[k] = _mm256_fmadd_pd(acc[k], m, add);
+            double out[4];
+            for (int k = 1; k < CHAINS; k++) acc[0] = _mm256_add_pd(acc[0], acc[k]);
+            _mm256_storeu_pd(out, acc[0]);
+            sink += out[0] + out[1] + out[2] + out[3];
+        }
+        double dt = omp_get_wtime() - t0, g = (double)nt * FMA_ITERS * CHAINS * 4 * 2 / dt / 1e9;
+        if (sink == 42.0) printf("#\n"); /* keep the chains alive */
+        if (g > best) best = g;
+    }
+    return best;
+}
+
+/* GB/s of the triad on nt threads. */
+static double triad(int nt, double *a, const double *b, const double *c)
+{
+    double best = 0;
+    for (int rep = 0; rep < REPS; rep++) {
+        double t0 = omp_get_wtime();
+#pragma omp parallel for num_threads(nt) schedule(static)
+        for (long i = 0; i < TRIAD_N; i++) a[i] = b[i] + 3.0 * c[i];
+        double dt = omp_get_wtime() - t0, g = 24.0 * TRIAD_N / dt / 1e9;
+        if (g > best) best = g;
+    }
+    return best;
+}
+
+int main(int argc, char **argv)
+{
+    int nmax = argc > 1 ? atoi(argv[1]) : omp_get_max_threads();
+    double *a = malloc(TRIAD_N * sizeof *a), *b = malloc(TRIAD_N * sizeof *b), *c = malloc(TRIAD_N * sizeof *c);
+    if (!a || !b || !c || nmax < 1) return 1;
+#pragma omp parallel for num_threads(nmax) schedule(static) /* first touch by the threads that use them */
+    for (long i = 0; i < TRIAD_N; i++) a[i] = 0, b[i] = 1, c[i] = 2;
+    for (int nt = 1; nt <= nmax; nt = nt < nmax && 2 * nt > nmax ? nmax : 2 * nt)
+        printf("%d\t%.1f\t%.1f\n", nt, peak(nt), triad(nt, a, b, c));
+    free(a), free(b), free(c);
+    return 0;
+}
