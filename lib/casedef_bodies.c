@@ -157,7 +157,8 @@ static void read_floating(cd_ctx *c, xmlNodePtr e, vres_store *s)
     double rhop = 0, massbody = 0, masspart = 0;
     int has_rhop = cd_num(c, e, "rhopbody", 0, &rhop) == 0;
     double relw = 0;
-    if (cd_num(c, e, "relativeweight", 0, &relw) == 0) {
+    const int has_relw = cd_num(c, e, "relativeweight", 0, &relw) == 0;
+    if (has_relw) {
         if (has_rhop) cd_err(c, e, "only one of rhopbody and relativeweight may be given");
         else if (!(relw > 0)) cd_err(c, e, "relativeweight must be greater than zero (%g)", relw);
         has_rhop = 1;
@@ -175,10 +176,15 @@ static void read_floating(cd_ctx *c, xmlNodePtr e, vres_store *s)
     /* volume per particle: dp^dim, half that on lattice 2 (body-centred cubic walls hold two
      * particles per cell), so that rhopbody times the body's volume is its mass on either */
     double vol = pow(d->dp, s->dim) / ((int)c->k.v[CK_LATTICE][0] == 2 ? 2 : 1);
-    if (has_mass) {
-        if (!(massbody > 0)) cd_err(c, e, "massbody must be greater than zero (%g)", massbody);
+    if (has_mass && !(massbody > 0)) {
+        cd_err(c, e, "massbody must be greater than zero (%g)", massbody);
+        return;
+    } else if (has_mass) {
         if (!has_part) masspart = massbody / (double)n;
-    } else if (has_rhop && rhop > 0) {
+    } else if (has_rhop && !(rhop > 0)) {
+        if (!has_relw) cd_err(c, e, "rhopbody must be greater than zero (%g)", rhop); /* else said above */
+        return;
+    } else if (has_rhop) {
         if (!has_part) masspart = rhop * vol;
         massbody = masspart * (double)n;
     } else if (has_part) {

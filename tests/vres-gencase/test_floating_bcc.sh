@@ -115,6 +115,20 @@ sed 's|relativeweight="0.5"|relativeweight="0"|' "$T/rw_Def.xml" >"$T/rw0_Def.xm
 expect_err 1 'rw0_Def\.xml:[0-9]+: relativeweight must be greater than zero \(0\)' "relativeweight 0: refused" \
     "$BIN/vres-gencase" "$T/rw0_Def.xml" -o "$T/rw0.h5"
 
+# a body of zero or negative mass: one message naming the element and its line, nothing written
+for kv in 'massbody value="0":massbody must be greater than zero \(0\)' \
+          'massbody value="-5":massbody must be greater than zero \(-5\)'; do
+    sed "s|<massbody value=\"40\" />|<${kv%%:*} />|" "$T/fl_Def.xml" >"$T/m_Def.xml"
+    expect_err 1 "m_Def\.xml:[0-9]+: ${kv#*:}" "${kv%%:*}: refused" "$BIN/vres-gencase" "$T/m_Def.xml" -o "$T/m.h5"
+    check "${kv%%:*}: one message" [ "$(grep -c '^vres-gencase: ' "$ERR")" -eq 1 ]
+    check "${kv%%:*}: nothing written" [ ! -e "$T/m.h5" ]
+done
+sed 's|<floating mkbound="50"> <massbody value="40" /> </floating>|<floating mkbound="50" rhopbody="-500" />|' \
+    "$T/fl_Def.xml" >"$T/m_Def.xml"
+expect_err 1 'm_Def\.xml:[0-9]+: rhopbody must be greater than zero \(-500\)' "rhopbody -500: refused" \
+    "$BIN/vres-gencase" "$T/m_Def.xml" -o "$T/m.h5"
+check "rhopbody -500: one message" [ "$(grep -c '^vres-gencase: ' "$ERR")" -eq 1 ]
+
 expect 0 "vres-run runs it" "$BIN/vres-run" -q --threads 1 "$T/fl.h5" -o "$T/run"
 "$BIN/vres-forces" --mk 50 "$T/run" >"$T/body.tsv" 2>"$ERR" || notok "vres-forces on the body"
 # columns: time fx fy fz mx my mz cx cy cz vx vy vz angle
