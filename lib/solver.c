@@ -304,8 +304,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
         size_t kmin;
         if (sort_all(set, c, VRES_CARRY_NONE, sorted, t) != 0) { rc = VRES_RUN_FAIL; break; }
         save_start_all(set);
-        vres_floats_hold(m.fl, t);
-        vres_floats_begin(m.fl);
+        vres_floats_begin(m.fl, t);
         dt = forces_all(set, c, c->verlet && c->shift != 0, &kmin, &amax, &visc);
         if (!(dt >= c->dtmin)) {
             vres_error("unstable at step %ld, t = %.6g s: time step %g s below DtMin %g s (largest acceleration "

@@ -163,13 +163,9 @@ void vres_floats_close(vres_floats *f)
     free(f);
 }
 
-void vres_floats_hold(vres_floats *f, double t)
+void vres_floats_begin(vres_floats *f, double t)
 {
     if (f) f->held = t < f->pause;
-}
-
-void vres_floats_begin(vres_floats *f)
-{
     for (size_t j = 0; f && j < f->n; j++) f->b[j].start = f->b[j].now;
 }
 

@@ -72,17 +72,14 @@ int vres_float_check(const vres_body *b, int dim);
  * none. Anchored at their state now. */
 vres_floats *vres_floats_open(const vres_store *s, const double g[3], double pause);
 
-/* Whether the bodies are held in the step that starts at time t (s): before the pause ends
- * their forces are summed but they do not move and their particles' velocity is zero; after
- * it they go on from their state (the case's initial velocities, when it gives them). Nothing
- * when f is NULL. */
-void vres_floats_hold(vres_floats *f, double t);
-
 /* Free f (NULL is fine). */
 void vres_floats_close(vres_floats *f);
 
-/* Keep every body's state as the step's start (nothing when f is NULL). */
-void vres_floats_begin(vres_floats *f);
+/* Keep every body's state as the start of the step that starts at time t (s), and whether the
+ * bodies are held in it: before the pause ends their forces are summed but they do not move and
+ * their particles' velocity is zero; after it they go on from their state (the case's initial
+ * velocities, when it gives them). Nothing when f is NULL. */
+void vres_floats_begin(vres_floats *f, double t);
 
 /* Gather the bodies' force and torque sums from the nb backends b (after their forces; b[k]
  * holds the store's domain k), each body's from its owner's only, then move the bodies by the

@@ -83,12 +83,6 @@ static const vres_body *store_body(const vres_store *s, int mk)
     return NULL;
 }
 
-/* The motion columns of body b at the store's time t into v: centre (m), velocity (m/s), and the
- * angle (rad) of its rotation since t = 0 (2D: about y, signed; 3D: about its axis, in [0, pi]). */
-static void body_motion(const vres_body *b, double t, int dim, double *v)
-{
-    vres_body_state(b, t, dim, v + COL_CX, v + COL_VX, &v[COL_ANGLE]);
-}
 
 /* Report a usage error and exit 2, as the parser does. */
 static void usage_fail(const char *tool)
@@ -256,10 +250,10 @@ static void write_header(FILE *o, const request *r, const vres_store *s, const v
     else if (r->ncoef)
         fprintf(o, "# cd = fx / (0.5 rho U^2 A), cl = fz / (0.5 rho U^2 A): U = %g m/s, A = %g m^2, rho = %g kg/m^3\n",
                 r->U, r->A, r->rho);
+    const int floats = body && store_body(s, r->mk)->kind == VRES_FLOATING;
     if (body)
         fprintf(o, "# %s body: cx..cz its centre, vx..vz its velocity (%s), angle its rotation since t = 0 (%s)\n",
-                store_body(s, r->mk)->kind == VRES_FLOATING ? "floating" : "moving",
-                store_body(s, r->mk)->kind == VRES_FLOATING ? "/Bodies" : "its motion at the snapshot's time",
+                floats ? "floating" : "moving", floats ? "/Bodies" : "its motion at the snapshot's time",
                 s->dim == 2 ? "about y, right-handed" : "about its axis");
     fprintf(o, "# time_s");
     for (int k = 0; k < NCOL; k++)
@@ -317,8 +311,8 @@ static int compute_rows(FILE *o, const request *r, const snap *in, size_t n, row
         w->v[COL_CD] = L.force[0] / q;
         w->v[COL_CL] = L.force[2] / q;
         for (int k = COL_CX; k < NCOL; k++) w->v[k] = NAN;
-        const vres_body *b = store_body(s, r->mk);
-        if (b) body_motion(b, s->time, s->dim, w->v);
+        const vres_body *b = store_body(s, r->mk); /* its centre, velocity and angle at the snapshot's time */
+        if (b) vres_body_state(b, s->time, s->dim, w->v + COL_CX, w->v + COL_VX, &w->v[COL_ANGLE]);
         vres_store_free(s);
     }
     return 0;
