@@ -915,7 +915,22 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
         const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim); /* 1 and 2 */
         /* 3: their data; a wall particle a (DBC) leaves out its wall and buffer neighbours */
         int np = 0;
-        for (int j = 0; j < nkept; j++) {
+        if (fluid_a) { /* every kept neighbour is a pair: slot j is pair j, no store waits on a count */
+            for (int j = 0; j < nkept; j++) {
+                const int i = L.kept[j];
+                const size_t b = L.b[i];
+                Q.dx[j] = L.dx[i], Q.dz[j] = L.dz[i], Q.r2[j] = L.r2[i];
+                Q.vx[j] = P->vx[b * SV], Q.vz[j] = P->vz[b * SV], Q.mb[j] = P->mass[b];
+                if (D3) Q.dy[j] = L.dy[i], Q.vy[j] = P->vy[b * SV];
+                Q.rhob[j] = P->rho[b], Q.inv_rhob[j] = P->inv_rho[b], Q.pb[j] = P->press[b];
+                if (walls) {
+                    const int wall_b = !vres_type_acts_fluid(P->type[b]);
+                    Q.wall[j] = wall_b, Q.visc[j] = wall_b || float_a ? visc_wall : visc_fluid;
+                    if (shift && wall_b && vres_sph_wall_stops_shift(C, P->type[b])) noshift = 1;
+                }
+            }
+            np = nkept;
+        } else for (int j = 0; j < nkept; j++) {
             const int i = L.kept[j];
             const size_t b = L.b[i];
             const int wall_b = walls && !vres_type_acts_fluid(P->type[b]);
