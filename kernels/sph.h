@@ -570,7 +570,17 @@ typedef struct vres_sph_arrays {
     const uint8_t *type;   /* [n] particle types (kernels/ptype.h) */
     double *tau;           /* [6n] laminar+SPS: the interaction writes each particle's sub-particle stress over
                               rho^2 here (vres_sps_tau_from_strain; the one output among these); NULL otherwise */
+    const uint32_t *nfl;   /* [n] how many of slots 0..s act as fluid (vres_type_acts_fluid), modulo 2^32: a DBC
+                              wall particle passes over the neighbour ranges without any (vres_sph_range_wet);
+                              NULL: it looks at every range */
 } vres_sph_arrays;
+
+/* 1 when slots [b, e) (b < e) hold a particle that acts as fluid, by the counts nfl of
+ * vres_sph_arrays (a run of 2^32 slots or more would read as dry: none is that long). */
+VRES_HD static inline int vres_sph_range_wet(const uint32_t *nfl, size_t b, size_t e)
+{
+    return nfl[e - 1] - (b ? nfl[b - 1] : 0u) != 0u;
+}
 
 /* The distance between consecutive elements of vres_sph_arrays' velocities in dimension dim: 1
  * (2D, split) or 3 (3D, interleaved). */
@@ -614,6 +624,7 @@ VRES_HD static inline vres_sph_arrays vres_sph_arrays_make(size_t n, int dim, co
     }
     P.rho = rho, P.press = press, P.inv_rho = inv_rho, P.mass = mass, P.type = type;
     P.tau = NULL;
+    P.nfl = NULL;
     return P;
 }
 
@@ -640,6 +651,7 @@ typedef struct vres_sph_stencil {
     int m;                  /* how many ranges; 0 for the slots outside the grid */
     double ylo, yhi;        /* the cell's faces across y (m; 0 in 2D) */
     double zlo, zhi;        /* the cell's faces across z (m) */
+    int shifted;            /* 1 when a range has a periodic shift (vres_sph_cands' rc is then set) */
 } vres_sph_stencil;
 
 /* 0 when no particle of range c of the stencil S lies within sqrt(far2) (m) of a point at (y, z)
@@ -655,23 +667,44 @@ VRES_HD static inline int vres_sph_row_reaches(const vres_sph_stencil *S, int c,
     return fy * fy + fz * fz < far2;
 }
 
-/* One pass's candidates of the cell-wise loops (vres_sph_interact_v, vres_sph_shift_sums_v). */
+/* One pass's candidates of the cell-wise loops (vres_sph_interact_v, vres_sph_shift_sums_v): their
+ * distances and slots only; a kept candidate's offsets are computed again where they are used
+ * (vres_sph_cand_d), as the pass computed them, so the pass stores two numbers a candidate, not
+ * five (a candidate list is mostly rejects). */
 typedef struct vres_sph_cands {
-    double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
-    double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
-    size_t b[VRES_SPH_LIST];                                        /* slot */
+    double r2[VRES_SPH_LIST];    /* r^2 (m^2) */
+    size_t b[VRES_SPH_LIST];     /* slot */
+    uint8_t rc[VRES_SPH_LIST];   /* the stencil's range it came from (set when the stencil has shifts) */
     uint8_t kept[VRES_SPH_LIST]; /* [0, nkept): indices of the kept candidates */
 } vres_sph_cands;
 
+/* The offsets x_ab, y_ab (3D; else 0), z_ab (m) of candidate i of pass L of particle a at (xa, ya,
+ * za), the very operations of vres_sph_pass (so the same bits). */
+VRES_HD static inline VRES_FORCE_INLINE void vres_sph_cand_d(const vres_sph_cands *L, const vres_sph_stencil *St,
+                                                             const vres_sph_arrays *P, int i, double xa, double ya,
+                                                             double za, const int dim, double *dx, double *dy,
+                                                             double *dz)
+{
+    const size_t b = L->b[i];
+    double sx = 0, sy = 0, sz = 0;
+    if (St->shifted) {
+        const double *s = St->nb[L->rc[i]].shift;
+        sx = s[0], sy = s[1], sz = s[2];
+    }
+    *dx = xa - (P->x[b] + sx), *dz = za - (P->z[b] + sz);
+    *dy = dim == 3 ? ya - (P->y[b] + sy) : 0.0;
+}
+
 /* The next pass of particle a's candidates (at xa, ya, za, m) in the ranges of its stencil St,
  * from range *c at slot *b0 on (both advanced past the pass), ranges whose row lies out of reach
- * (vres_sph_row_reaches) passed over whole: 1. the offsets and distances of each run of slots
+ * (vres_sph_row_reaches) passed over whole, and with wet_only those without a particle that acts
+ * as fluid too (vres_sph_range_wet; P->nfl must be set): 1. the distances of each run of slots
  * (vector instructions), up to VRES_SPH_LIST; 2. the indices of those inside the support,
  * a itself left out, into L->kept without a branch. Returns how many were kept. */
 VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass(vres_sph_cands *L, const vres_sph_stencil *St,
                                                           const vres_sph_arrays *P, const vres_sph_consts *C,
                                                           int *cp, size_t *b0p, double xa, double ya, double za,
-                                                          const int dim)
+                                                          const int dim, const int wet_only)
 {
     const int D3 = dim == 3, m = St->m;
     const vres_cell_range *nb = St->nb;
@@ -679,22 +712,24 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass(vres_sph_cands *L, con
     int c = *cp, nc = 0;
     size_t b0 = *b0p;
     for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
-        if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, ya, za, far2)) continue; /* a row out of reach */
+        if (b0 == nb[c].begin && (!vres_sph_row_reaches(St, c, ya, za, far2) || /* a row out of reach */
+                                  (wet_only && !vres_sph_range_wet(P->nfl, b0, nb[c].end)))) /* or dry */
+            continue;
         const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
         size_t e = nb[c].end;
         if (e - b0 > (size_t)(VRES_SPH_LIST - nc)) e = b0 + (size_t)(VRES_SPH_LIST - nc);
         const int len = (int)(e - b0);
         const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
-        double *cdx = L->dx + nc, *cdy = L->dy + nc, *cdz = L->dz + nc, *cr2 = L->r2 + nc;
+        double *cr2 = L->r2 + nc;
         size_t *cb = L->b + nc;
 #pragma omp simd
         for (int j = 0; j < len; j++) {
             const double dx = xa - (xb[j] + sx), dz = za - (zb[j] + sz);
             const double dy = D3 ? ya - (yb[j] + sy) : 0.0;
             const double r2 = D3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
-            cdx[j] = dx, cdz[j] = dz, cr2[j] = r2, cb[j] = b0 + (size_t)j;
-            if (D3) cdy[j] = dy;
+            cr2[j] = r2, cb[j] = b0 + (size_t)j;
         }
+        if (St->shifted) memset(L->rc + nc, c, (size_t)len);
         nc += len;
         b0 = e;
         if (e < nb[c].end) break; /* the pass is full: do it, then go on from b0 */
@@ -723,7 +758,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_shift_sums_v(size_t a, const
     int c = 0;
     size_t b0 = m ? St->nb[0].begin : 0;
     while (c < m) {
-        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim, 0);
         for (int j = 0; j < nkept; j++) {
             const size_t b = L.b[L.kept[j]];
             F[j] = vres_sph_kernel_f(C, kernel, sqrt(L.r2[L.kept[j]]));
@@ -731,7 +766,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_shift_sums_v(size_t a, const
         }
         for (int j = 0; j < nkept; j++) {
             const int i = L.kept[j];
-            const double dx = L.dx[i], dy = D3 ? L.dy[i] : 0.0, dz = L.dz[i];
+            double dx, dy, dz;
+            vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &dx, &dy, &dz);
             const double frx = F[j] * dx, fry = F[j] * dy, frz = F[j] * dz;
             const int tb = P->type[L.b[i]];
             if (walls && !vres_type_acts_fluid(tb) && vres_sph_wall_stops_shift(C, tb)) noshift = 1;
@@ -796,13 +832,14 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres
     int c = 0;
     size_t b0 = St->m ? St->nb[0].begin : 0;
     while (c < St->m) {
-        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim, 0);
         for (int j = 0; j < nkept; j++) {
             const int i = L.kept[j];
             const size_t b = L.b[i];
-            Q.dx[j] = L.dx[i], Q.dz[j] = L.dz[i], Q.r2[j] = L.r2[i];
+            vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &Q.dx[j], &Q.dy[j], &Q.dz[j]);
+            Q.r2[j] = L.r2[i];
             Q.vx[j] = P->vx[b * SV], Q.vz[j] = P->vz[b * SV];
-            if (D3) Q.dy[j] = L.dy[i], Q.vy[j] = P->vy[b * SV];
+            if (D3) Q.vy[j] = P->vy[b * SV];
             Q.m[j] = P->mass[b], Q.ir[j] = P->inv_rho[b];
         }
 #pragma omp simd
@@ -870,6 +907,9 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     }
     const int fluid_a = !walls || vres_type_is_fluid(P->type[a]);
     const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(P->type[a]);
+    /* a wall particle among walls none of which floats pairs only with fluid (and inlet) particles:
+       it passes over the rows without any (most walls of a dam break are dry), which changes no sum */
+    const int dry_walls = walls == VRES_WALLS_DBC && !fluid_a && P->nfl;
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
     const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
     const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
@@ -912,16 +952,17 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     int c = 0;
     size_t b0 = m ? nb[0].begin : 0;
     while (c < m) {
-        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim); /* 1 and 2 */
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim, dry_walls); /* 1 and 2 */
         /* 3: their data; a wall particle a (DBC) leaves out its wall and buffer neighbours */
         int np = 0;
         if (fluid_a) { /* every kept neighbour is a pair: slot j is pair j, no store waits on a count */
             for (int j = 0; j < nkept; j++) {
                 const int i = L.kept[j];
                 const size_t b = L.b[i];
-                Q.dx[j] = L.dx[i], Q.dz[j] = L.dz[i], Q.r2[j] = L.r2[i];
+                vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &Q.dx[j], &Q.dy[j], &Q.dz[j]);
+                Q.r2[j] = L.r2[i];
                 Q.vx[j] = P->vx[b * SV], Q.vz[j] = P->vz[b * SV], Q.mb[j] = P->mass[b];
-                if (D3) Q.dy[j] = L.dy[i], Q.vy[j] = P->vy[b * SV];
+                if (D3) Q.vy[j] = P->vy[b * SV];
                 Q.rhob[j] = P->rho[b], Q.inv_rhob[j] = P->inv_rho[b], Q.pb[j] = P->press[b];
                 if (walls) {
                     const int wall_b = !vres_type_acts_fluid(P->type[b]);
@@ -934,9 +975,10 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
             const int i = L.kept[j];
             const size_t b = L.b[i];
             const int wall_b = walls && !vres_type_acts_fluid(P->type[b]);
-            Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i];
+            vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &Q.dx[np], &Q.dy[np], &Q.dz[np]);
+            Q.r2[np] = L.r2[i];
             Q.vx[np] = P->vx[b * SV], Q.vz[np] = P->vz[b * SV], Q.mb[np] = P->mass[b];
-            if (D3) Q.dy[np] = L.dy[i], Q.vy[np] = P->vy[b * SV];
+            if (D3) Q.vy[np] = P->vy[b * SV];
             Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
             if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b || float_a ? visc_wall : visc_fluid;
             if (float_a) Q.buf[np] = (uint8_t)vres_type_is_buffer(P->type[b]);
@@ -1075,13 +1117,15 @@ VRES_HD static inline VRES_FORCE_INLINE size_t vres_sph_stencil_make(size_t cell
                                                                      vres_sph_stencil *St)
 {
     size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
-    St->m = 0;
+    St->m = St->shifted = 0;
     St->ylo = St->yhi = St->zlo = St->zhi = 0;
     if (g->begin[cell] == end) return end;
     if (cell < g->ncells) {
         int c[3];
         vres_cells_ijk(g, cell, c);
         St->m = vres_cells_rows(g, c[0], c[1], c[2], St->nb, St->rows);
+        for (int q = 0; q < St->m; q++)
+            St->shifted |= St->nb[q].shift[0] != 0 || St->nb[q].shift[1] != 0 || St->nb[q].shift[2] != 0;
         if (dim == 3) St->ylo = g->lo[1] + c[1] * g->cell[1], St->yhi = St->ylo + g->cell[1];
         St->zlo = g->lo[2] + c[2] * g->cell[2], St->zhi = St->zlo + g->cell[2];
     }

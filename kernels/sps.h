@@ -156,14 +156,14 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sps_force_v(size_t a, const vr
     int c = 0;
     size_t b0 = St->m ? St->nb[0].begin : 0;
     while (c < St->m) {
-        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim);
+        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim, 0);
         int np = 0;
         for (int j = 0; j < nkept; j++) {
             const int i = L.kept[j];
             const size_t b = L.b[i];
             if (float_a && !vres_type_acts_fluid(P->type[b])) continue; /* a body's walls: no tau either side */
-            Q.dx[np] = L.dx[i], Q.dz[np] = L.dz[i], Q.r2[np] = L.r2[i], Q.m[np] = P->mass[b];
-            if (D3) Q.dy[np] = L.dy[i];
+            vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &Q.dx[np], &Q.dy[np], &Q.dz[np]);
+            Q.r2[np] = L.r2[i], Q.m[np] = P->mass[b];
             Q.tb[0][np] = tau[6 * b], Q.tb[2][np] = tau[6 * b + 2], Q.tb[5][np] = tau[6 * b + 5];
             if (D3) Q.tb[1][np] = tau[6 * b + 1], Q.tb[3][np] = tau[6 * b + 3], Q.tb[4][np] = tau[6 * b + 4];
             np++;

@@ -20,7 +20,7 @@
 #include "solver_int.h"
 
 /* Most per-particle arrays of the backend's own (cpu_ctx's work list). */
-#define CPU_NWORK 16
+#define CPU_NWORK 24
 
 /* The CPU backend's state: the domain's arrays are the store's; these are the rest. */
 typedef struct cpu_ctx {
@@ -46,6 +46,8 @@ typedef struct cpu_ctx {
     double *xs;           /* [dim n] positions split by axis for the interaction: x then z (2D), x, y, z (3D) (m) */
     float *v2d;           /* [2n] 2D: x then z velocities (m/s); NULL in 3D */
     double *inv_rho;      /* [n] 1/density of each particle (m^3/kg), for the interaction */
+    uint32_t *nfl;        /* [n] DBC walls none of which floats: how many of slots 0..s act as fluid (vres_sph_arrays'
+                             nfl), so that dry walls pass over their rows; NULL for other scenes */
     double *tau;          /* [6n] laminar+SPS: each particle's sub-particle stress over rho^2 (kernels/sps.h);
                              NULL for the other viscosities */
     uint8_t *mark;        /* [n] the marks that remove reads (marks, mark_out) */
@@ -124,6 +126,17 @@ static void cpu_sps(cpu_ctx *x, const vres_sph_arrays *P)
     else (cubic ? vres_sps3d_cubic_force_cpu : vres_sps3d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
 }
 
+/* nfl[s] = how many of the n particles' slots 0..s act as fluid (modulo 2^32), type in cell order:
+ * one pass, cheap next to the interaction that reads it. */
+static void count_fluid(size_t n, const uint8_t *type, uint32_t *nfl)
+{
+    uint32_t k = 0;
+    for (size_t s = 0; s < n; s++) {
+        k += (uint32_t)vres_type_acts_fluid(type[s]);
+        nfl[s] = k;
+    }
+}
+
 /* mDBC, EOS, then the interaction at the current (cell-sorted) state. */
 static double cpu_forces(vres_backend *b, int shift, double *visc_max)
 {
@@ -142,6 +155,7 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, d->vel, x->v2d, d->rho, d->press, x->inv_rho,
                                              d->mass_p, d->type);
     P.tau = x->tau; /* laminar+SPS: the interaction writes the stress there */
+    if (x->nfl) count_fluid(n, d->type, x->nfl), P.nfl = x->nfl;
     if (c->general)
         vres_sph_general_v_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
                                vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, c->dim);
@@ -418,6 +432,7 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
     add_work(x, &x->xs, (size_t)c->dim * sizeof *x->xs, VRES_WORK_SCRATCH, -1);
     if (c->dim == 2) add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);
     add_work(x, &x->inv_rho, sizeof *x->inv_rho, VRES_WORK_SCRATCH, -1);
+    if (vres_run_pick(c, dc).walls == VRES_WALLS_DBC) add_work(x, &x->nfl, sizeof *x->nfl, VRES_WORK_SCRATCH, -1);
     if (c->visco_kind == VRES_VISC_SPS) add_work(x, &x->tau, 6 * sizeof *x->tau, VRES_WORK_SCRATCH, -1);
     /* Verlet: the previous step of the first is the start itself, as DualSPHysics */
     if (c->verlet) add_work(x, &x->velm1, 3 * sizeof *x->velm1, VRES_WORK_CARRY, VRES_FIELD_VEL);

@@ -357,6 +357,13 @@ START_TEST(interaction2d_equals_3d)
 }
 END_TEST
 
+/* nfl[s] = how many of slots 0..s act as fluid (vres_sph_arrays' nfl), for types in slot order. */
+static void fluid_counts(size_t n, const uint8_t *type, uint32_t *nfl)
+{
+    uint32_t k = 0;
+    for (size_t s = 0; s < n; s++) nfl[s] = k += (uint32_t)vres_type_acts_fluid(type[s]);
+}
+
 /* The 3D cell-wise interaction (vres_sph3d_*: interleaved arrays, merged row ranges, branch-free
  * candidate filter) adds the same terms in the same order as the per-particle one, so on a 3D
  * particle set (a jittered block of fluid over a fixed floor, a floating cube in it, a band of
@@ -399,6 +406,7 @@ START_TEST(interaction3d_cells_equal_particles)
     double *ace1 = calloc(3 * n, sizeof(double)), *ar1 = calloc(n, sizeof(double)), *vi1 = calloc(n, sizeof(double));
     double *sh1 = calloc(4 * n, sizeof(double)), *ace2 = calloc(3 * n, sizeof(double));
     double *ar2 = calloc(n, sizeof(double)), *vi2 = calloc(n, sizeof(double)), *sh2 = calloc(4 * n, sizeof(double));
+    uint32_t *nfl = malloc(n * sizeof *nfl);
     for (int pi = 0; pi < 3; pi++) {
         vres_cells g;
         double lo[3] = {0, 0, -0.02}, hi[3] = {L, L, 0.07}; /* the lattice repeats across x and y */
@@ -406,7 +414,8 @@ START_TEST(interaction3d_cells_equal_particles)
         vres_cells_build(&g, d.pos, d.n);
         ck_assert_int_eq(vres_cells_reorder(&g, &d), 0);
         vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, NULL, ir);
-        const vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, d.vel, NULL, d.rho, d.press, ir, d.mass_p, d.type);
+        vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, d.vel, NULL, d.rho, d.press, ir, d.mass_p, d.type);
+        fluid_counts(n, d.type, nfl);
         for (int walls = 1; walls <= 2; walls++)
             for (int v = 0; v < 8; v++)
                 for (int gen = 0; gen < 2; gen++) {
@@ -428,7 +437,9 @@ START_TEST(interaction3d_cells_equal_particles)
                              vres_sph3d_cubic_flt_fourtakas_cpu, vres_sph3d_cubic_laminar_flt_fourtakas_cpu,
                              vres_sph3d_shift_flt_fourtakas_cpu, vres_sph3d_shift_laminar_flt_fourtakas_cpu,
                              vres_sph3d_cubic_shift_flt_fourtakas_cpu, vres_sph3d_cubic_shift_laminar_flt_fourtakas_cpu}};
+                        P.nfl = nfl; /* the specialised loops as vres-run calls them: dry walls pass over rows */
                         loops[walls - 1][v](g.ncells + 1, &g, &P, &C3, ace2, ar2, vi2, sh2);
+                        P.nfl = NULL;
                     }
                     double sum = 0;
                     for (size_t i = 0; i < n; i++) {
@@ -445,6 +456,72 @@ START_TEST(interaction3d_cells_equal_particles)
         vres_cells_free(&g);
     }
     free(ir), free(xs), free(ace1), free(ar1), free(vi1), free(sh1), free(ace2), free(ar2), free(vi2), free(sh2);
+    free(nfl);
+    vres_domain_free(&d);
+}
+END_TEST
+
+/* A DBC wall particle pairs only with fluid: given the fluid counts of the slots (vres_sph_arrays'
+ * nfl), it passes over the rows without fluid. On a 3D set of jittered fluid over a wetted floor
+ * and, beside it, a dry wall block more than 2h from any fluid, the specialised loop with and
+ * without the counts gives the per-particle loop's rates bit for bit (tolerance 0: the rows passed
+ * over hold no pair), and the set has both dry walls (rate 0) and wet ones (rate not 0), so the
+ * passing over happened and did not drop a wet row. */
+START_TEST(dry_walls_pass_over_their_rows)
+{
+    const double dp = 0.01;
+    vres_sph_consts C = consts();
+    vres_sph_consts C3 = vres_sph_consts_make(3, C.h, C.cs0);
+    C3.alpha = C.alpha, C3.alpha_wall = 0.02, C3.ddt_khc = C.ddt_khc, C3.rho0 = C.rho0, C3.rho0_over_B = C.rho0_over_B;
+    C3.inv_gamma = C.inv_gamma, C3.g[2] = -9.81;
+    vres_domain d;
+    memset(&d, 0, sizeof d);
+    srand(5);
+    for (int i = 0; i < 16; i++)
+        for (int j = 0; j < 6; j++)
+            for (int k = -2; k < 6; k++) {
+                const int fluid = k >= 0 && i < 6, wall = k < 0 || i >= 11; /* floor, and a block at i >= 11 */
+                if (!fluid && !wall) continue;
+                const double jit = fluid ? 0.3 * dp : 0;
+                double x[3] = {(i + 0.5) * dp + jit * (rand() / (double)RAND_MAX - 0.5),
+                               (j + 0.5) * dp + jit * (rand() / (double)RAND_MAX - 0.5),
+                               (k + 0.5) * dp + jit * (rand() / (double)RAND_MAX - 0.5)};
+                const size_t q = vres_domain_push(&d, x, fluid ? VRES_FLUID : VRES_FIXED, 0);
+                d.rho[q] = (float)(1000 + 5 * rand() / (double)RAND_MAX);
+                d.press[q] = (float)(1000 * rand() / (double)RAND_MAX);
+                d.mass_p[q] = 0.1;
+                for (int a = 0; a < 3 && fluid; a++) d.vel[3 * q + a] = (float)(rand() / (double)RAND_MAX - 0.5);
+            }
+    ck_assert(5 * dp - 0.3 * dp > 2 * C3.h); /* the block (x >= 0.11) lies beyond the support of the fluid (x < 0.06) */
+    const size_t n = d.n;
+    double *ir = malloc(n * sizeof *ir), *xs = malloc(3 * n * sizeof *xs), *ar[3];
+    double *ace = calloc(3 * n, sizeof(double)), *vi = calloc(n, sizeof(double));
+    uint32_t *nfl = malloc(n * sizeof *nfl);
+    for (int r = 0; r < 3; r++) ar[r] = calloc(n, sizeof(double));
+    vres_cells g;
+    double lo[3] = {0, 0, -0.02}, hi[3] = {0.16, 0.06, 0.06};
+    ck_assert_int_eq(vres_cells_init(&g, 3, 2 * C3.h, lo, hi, NULL), 0);
+    vres_cells_build(&g, d.pos, d.n);
+    ck_assert_int_eq(vres_cells_reorder(&g, &d), 0);
+    vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, NULL, ir);
+    vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, d.vel, NULL, d.rho, d.press, ir, d.mass_p, d.type);
+    fluid_counts(n, d.type, nfl);
+    vres_sph_general_cpu(n, &g, d.pos, d.vel, d.rho, d.press, d.mass_p, d.type, C3, ace, ar[0], vi, NULL,
+                         VRES_DDT_FOURTAKAS, VRES_WALLS_DBC, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
+    vres_sph3d_dbc_fourtakas_cpu(g.ncells + 1, &g, &P, &C3, ace, ar[1], vi, NULL);
+    P.nfl = nfl;
+    vres_sph3d_dbc_fourtakas_cpu(g.ncells + 1, &g, &P, &C3, ace, ar[2], vi, NULL);
+    size_t dry = 0, wet = 0, bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        bad += ar[1][i] != ar[0][i] || ar[2][i] != ar[0][i];
+        if (d.type[i] == VRES_FIXED) dry += ar[0][i] == 0, wet += ar[0][i] != 0;
+    }
+    ck_assert_msg(!bad, "%zu density rates differ", bad);
+    ck_assert_uint_gt(dry, 100); /* the block */
+    ck_assert_uint_gt(wet, 50);  /* the floor under the fluid (2 layers of 6 x 6) and near it */
+    vres_cells_free(&g);
+    for (int r = 0; r < 3; r++) free(ar[r]);
+    free(ir), free(xs), free(ace), free(vi), free(nfl);
     vres_domain_free(&d);
 }
 END_TEST
@@ -634,6 +711,7 @@ int main(void)
     tcase_add_test(tc, periodic_lattice_has_no_edges);
     tcase_add_test(tc, interaction2d_equals_3d);
     tcase_add_test(tc, interaction3d_cells_equal_particles);
+    tcase_add_test(tc, dry_walls_pass_over_their_rows);
     tcase_add_test(tc, motion_segments_follow_closed_forms);
     tcase_add_test(tc, shifting_fills_holes_not_surfaces);
     tcase_add_test(tc, verlet_leapfrog_and_euler_steps);
