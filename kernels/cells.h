@@ -52,6 +52,8 @@ typedef struct vres_cells {
     size_t *perm;       /* [n] particle index (in the order given to the build) of each sorted slot */
     int in_order;       /* 1 when perm is the identity (the particles were already in cell order): the
                            gathers then move nothing */
+    int xsorted;        /* 1 when the last build left each cell's particles in ascending x (vres_cells_build
+                           does; a backend's own sort may not), so that a row of cells is sorted by x */
     size_t nout;        /* particles outside the box at the last build */
     size_t first_out;   /* smallest index of those, (size_t)-1 when there is none */
     size_t cap;         /* particles perm, key and scratch have room for */

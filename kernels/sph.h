@@ -582,6 +582,14 @@ VRES_HD static inline int vres_sph_range_wet(const uint32_t *nfl, size_t b, size
     return nfl[e - 1] - (b ? nfl[b - 1] : 0u) != 0u;
 }
 
+/* nfl[s] = how many of slots 0..s of n act as fluid (modulo 2^32), types in slot order: the
+ * counts of vres_sph_arrays. One serial pass (a scan), cheap next to the interaction that reads it. */
+static inline void vres_sph_fluid_counts(size_t n, const uint8_t *type, uint32_t *nfl)
+{
+    uint32_t k = 0;
+    for (size_t s = 0; s < n; s++) nfl[s] = k += (uint32_t)vres_type_acts_fluid(type[s]);
+}
+
 /* The distance between consecutive elements of vres_sph_arrays' velocities in dimension dim: 1
  * (2D, split) or 3 (3D, interleaved). */
 #define VRES_SPH_VSTRIDE(dim) ((dim) == 2 ? 1 : 3)
@@ -646,13 +654,34 @@ VRES_HD static inline double vres_sph_accel2(size_t i, const uint8_t *type, cons
 
 /* A cell's neighbour ranges as the cell-wise interaction reads them (vres_sph_cell_v). */
 typedef struct vres_sph_stencil {
-    vres_cell_range nb[27]; /* the ranges (vres_cells_rows) */
+    vres_cell_range nb[27]; /* the ranges (vres_cells_rows), or a particle's window of them (windowed) */
     signed char rows[54];   /* each range's row offsets (oy, oz), each -1, 0 or 1 */
     int m;                  /* how many ranges; 0 for the slots outside the grid */
     double ylo, yhi;        /* the cell's faces across y (m; 0 in 2D) */
     double zlo, zhi;        /* the cell's faces across z (m) */
     int shifted;            /* 1 when a range has a periodic shift (vres_sph_cands' rc is then set) */
+    size_t fend[27];        /* each range's full end: nb[] holds a particle's window of it (vres_sph_stencil_window) */
+    int windowed;           /* 1 once nb[] holds a window */
 } vres_sph_stencil;
+
+/* Narrow the ranges of St (rows sorted by x: vres_cells' xsorted) to the slots whose x, shifted,
+ * lies within reach (m) of xa: the window of a particle at xa (m). The particles of St's cell must
+ * come in ascending x, for each window starts where the last one did. Every slot left out lies
+ * farther than reach from xa along x alone. */
+VRES_HD static inline void vres_sph_stencil_window(vres_sph_stencil *St, const double *x, double xa, double reach)
+{
+    const double lo = xa - reach, hi = xa + reach;
+    for (int c = 0; c < St->m; c++) {
+        const double sx = St->nb[c].shift[0];
+        const size_t fe = St->fend[c];
+        size_t b = St->nb[c].begin, e = St->windowed ? St->nb[c].end : b;
+        while (b < fe && x[b] + sx < lo) b++;
+        if (e < b) e = b;
+        while (e < fe && x[e] + sx <= hi) e++;
+        St->nb[c].begin = b, St->nb[c].end = e;
+    }
+    St->windowed = 1;
+}
 
 /* 0 when no particle of range c of the stencil S lies within sqrt(far2) (m) of a point at (y, z)
  * (m) inside S's cell: the range's row lies across one or two faces of the cell, and the point's
@@ -1117,15 +1146,17 @@ VRES_HD static inline VRES_FORCE_INLINE size_t vres_sph_stencil_make(size_t cell
                                                                      vres_sph_stencil *St)
 {
     size_t end = cell < g->ncells ? g->begin[cell + 1] : g->n;
-    St->m = St->shifted = 0;
+    St->m = St->shifted = St->windowed = 0;
     St->ylo = St->yhi = St->zlo = St->zhi = 0;
     if (g->begin[cell] == end) return end;
     if (cell < g->ncells) {
         int c[3];
         vres_cells_ijk(g, cell, c);
         St->m = vres_cells_rows(g, c[0], c[1], c[2], St->nb, St->rows);
-        for (int q = 0; q < St->m; q++)
+        for (int q = 0; q < St->m; q++) {
             St->shifted |= St->nb[q].shift[0] != 0 || St->nb[q].shift[1] != 0 || St->nb[q].shift[2] != 0;
+            St->fend[q] = St->nb[q].end;
+        }
         if (dim == 3) St->ylo = g->lo[1] + c[1] * g->cell[1], St->yhi = St->ylo + g->cell[1];
         St->zlo = g->lo[2] + c[2] * g->cell[2], St->zhi = St->zlo + g->cell[2];
     }
@@ -1142,8 +1173,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vr
 {
     vres_sph_stencil St;
     const size_t end = vres_sph_stencil_make(cell, g, dim, &St);
-    for (size_t a = g->begin[cell]; a < end; a++)
+    for (size_t a = g->begin[cell]; a < end; a++) {
+        /* the support, with a margin for the rounding of x_ab (relative to h and to |x_a|) */
+        if (g->xsorted) vres_sph_stencil_window(&St, P->x, P->x[a], 2.0 * C->h * (1 + 1e-9) + 1e-12 * fabs(P->x[a]));
         vres_sph_interact_v(a, &St, P, C, ace, ar, visc, shiftv, ddt, walls, viscosity, kernel, shift, dim);
+    }
 }
 
 /* VRES_CELL_LOOP(name, fn, (params), (args)): VRES_PARTICLE_LOOP over cells. On the CPU the

@@ -96,6 +96,42 @@ void vres_cells_bbox(const double *pos, size_t n, double lo[3], double hi[3])
     hi[0] = x1, hi[1] = y1, hi[2] = z1;
 }
 
+/* One slot of a cell being sorted by x: its particle's x (m) and index. */
+typedef struct cell_slot {
+    double x;   /* x position (m) */
+    size_t i;   /* particle index (in the order given to the build) */
+} cell_slot;
+
+/* qsort's order of cell_slot: x ascending, then the index (so that the order is the stable one). */
+static int cell_slot_cmp(const void *u, const void *v)
+{
+    const cell_slot *a = u, *b = v;
+    return a->x < b->x ? -1 : a->x > b->x ? 1 : (a->i > b->i) - (a->i < b->i);
+}
+
+/* perm[b, e) (the particle indices of one cell, ascending: the counting sort is stable) into
+ * ascending x of pos (3n, m), ties in index order. The last step left a cell's particles nearly in
+ * this order, so an insertion sort moves few; a cell of many (a crowd that a blow-up left in one
+ * cell) is sorted with qsort instead, so the cost stays n log n. */
+static void sort_cell_by_x(size_t *perm, size_t b, size_t e, const double *pos)
+{
+    if (e - b > 256) {
+        cell_slot *t = vres_xmalloc((e - b) * sizeof *t);
+        for (size_t s = b; s < e; s++) t[s - b].x = pos[3 * perm[s]], t[s - b].i = perm[s];
+        qsort(t, e - b, sizeof *t, cell_slot_cmp);
+        for (size_t s = b; s < e; s++) perm[s] = t[s - b].i;
+        free(t);
+        return;
+    }
+    for (size_t s = b + 1; s < e; s++) {
+        const size_t q = perm[s];
+        const double x = pos[3 * q];
+        size_t t = s;
+        for (; t > b && pos[3 * perm[t - 1]] > x; t--) perm[t] = perm[t - 1];
+        perm[t] = q;
+    }
+}
+
 size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
 {
     if (n > g->cap) {
@@ -113,16 +149,9 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
     for (size_t i = 0; i < n; i++) key[i] = vres_cells_key(g, pos + 3 * i);
 
     /* counting sort, serial so that the order within a cell is the input order (reproducible
-       sums); it is a few memory passes, cheap next to one interaction step. Keys that never
-       decrease make the stable sort the identity: the gathers then have nothing to move (a
-       coupled step sorts again at its start what its exchange has just sorted) */
+       sums); it is a few memory passes, cheap next to one interaction step */
     memset(begin, 0, (nc + 2) * sizeof *begin);
-    int in_order = 1;
-    for (size_t i = 0; i < n; i++) {
-        begin[key[i]]++;
-        in_order &= i == 0 || key[i] >= key[i - 1];
-    }
-    g->in_order = in_order;
+    for (size_t i = 0; i < n; i++) begin[key[i]]++;
     size_t sum = 0;
     for (size_t c = 0; c <= nc; c++) { /* counts -> first slot of each cell */
         size_t k = begin[c];
@@ -133,6 +162,18 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
     /* begin[c] now is the end of cell c: shift back by one cell */
     memmove(begin + 1, begin, (nc + 1) * sizeof *begin);
     begin[0] = 0;
+
+    /* each cell's particles in ascending x, so that a row of cells along x is sorted by x and an
+       interaction looks at the part of a row within its reach only (kernels/sph.h's
+       vres_sph_stencil_window) */
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t c = 0; c < nc; c++) sort_cell_by_x(g->perm, begin[c], begin[c + 1], pos);
+    g->xsorted = 1;
+    /* a sort that moved nothing (the input was in this order): the gathers then have nothing to
+       move (a coupled step sorts again at its start what its exchange has just sorted) */
+    int in_order = 1;
+    for (size_t i = 0; i < n && in_order; i++) in_order = g->perm[i] == i;
+    g->in_order = in_order;
 
     g->nout = n - begin[nc];
     g->first_out = g->nout ? g->perm[begin[nc]] : (size_t)-1; /* stable: the first is the smallest */

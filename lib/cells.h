@@ -1,6 +1,6 @@
 /* cells.h - building the cell-linked list of one particle set on the host: the box and its
  * cells (vres_cells_init), the sort of the particles by cell (a counting sort, O(n) and
- * stable), and the gathers that make every per-particle array follow it. The struct and what
+ * stable, then each cell by x), and the gathers that make every per-particle array follow it. The struct and what
  * the per-particle physics reads of it (a particle's cell, its neighbour cells, the pair
  * count, the periodic wrap) are in kernels/cells.h, written once for the CPU and CUDA.
  *
@@ -35,8 +35,10 @@ int vres_cells_init(vres_cells *g, int dim, double radius, const double lo[3], c
  * build reports those particles). lo > hi on every axis when no position is finite. */
 void vres_cells_bbox(const double *pos, size_t n, double lo[3], double hi[3]);
 
-/* Sort n positions (3n, m) by cell: fills perm and begin, nout and first_out. Stable: within a
- * cell, particles keep their order, so sums over neighbours are reproducible. Returns nout, the
+/* Sort n positions (3n, m) by cell: fills perm and begin, nout and first_out, and sets xsorted.
+ * Within a cell, particles come in ascending x, equal x in their input order (the particles
+ * outside the box in their input order): the order is a function of the input, so sums over
+ * neighbours are reproducible, and a row of cells along x is sorted by x. Returns nout, the
  * number of particles outside the box (0 when all are inside). */
 size_t vres_cells_build(vres_cells *g, const double *pos, size_t n);
 

@@ -126,17 +126,6 @@ static void cpu_sps(cpu_ctx *x, const vres_sph_arrays *P)
     else (cubic ? vres_sps3d_cubic_force_cpu : vres_sps3d_force_cpu)(nc, &x->cells, P, &x->C, walls, x->tau, x->ace);
 }
 
-/* nfl[s] = how many of the n particles' slots 0..s act as fluid (modulo 2^32), type in cell order:
- * one pass, cheap next to the interaction that reads it. */
-static void count_fluid(size_t n, const uint8_t *type, uint32_t *nfl)
-{
-    uint32_t k = 0;
-    for (size_t s = 0; s < n; s++) {
-        k += (uint32_t)vres_type_acts_fluid(type[s]);
-        nfl[s] = k;
-    }
-}
-
 /* mDBC, EOS, then the interaction at the current (cell-sorted) state. */
 static double cpu_forces(vres_backend *b, int shift, double *visc_max)
 {
@@ -155,7 +144,7 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, d->vel, x->v2d, d->rho, d->press, x->inv_rho,
                                              d->mass_p, d->type);
     P.tau = x->tau; /* laminar+SPS: the interaction writes the stress there */
-    if (x->nfl) count_fluid(n, d->type, x->nfl), P.nfl = x->nfl;
+    if (x->nfl) vres_sph_fluid_counts(n, d->type, x->nfl), P.nfl = x->nfl;
     if (c->general)
         vres_sph_general_v_cpu(x->cells.ncells + 1, &x->cells, &P, &x->C, x->ace, x->ar, x->visc, x->shiftv, c->ddt,
                                vres_run_pick(c, &x->dc).walls, c->visco_kind, c->kernel, shift, c->dim);

@@ -357,13 +357,6 @@ START_TEST(interaction2d_equals_3d)
 }
 END_TEST
 
-/* nfl[s] = how many of slots 0..s act as fluid (vres_sph_arrays' nfl), for types in slot order. */
-static void fluid_counts(size_t n, const uint8_t *type, uint32_t *nfl)
-{
-    uint32_t k = 0;
-    for (size_t s = 0; s < n; s++) nfl[s] = k += (uint32_t)vres_type_acts_fluid(type[s]);
-}
-
 /* The 3D cell-wise interaction (vres_sph3d_*: interleaved arrays, merged row ranges, branch-free
  * candidate filter) adds the same terms in the same order as the per-particle one, so on a 3D
  * particle set (a jittered block of fluid over a fixed floor, a floating cube in it, a band of
@@ -415,7 +408,7 @@ START_TEST(interaction3d_cells_equal_particles)
         ck_assert_int_eq(vres_cells_reorder(&g, &d), 0);
         vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, NULL, ir);
         vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, d.vel, NULL, d.rho, d.press, ir, d.mass_p, d.type);
-        fluid_counts(n, d.type, nfl);
+        vres_sph_fluid_counts(n, d.type, nfl);
         for (int walls = 1; walls <= 2; walls++)
             for (int v = 0; v < 8; v++)
                 for (int gen = 0; gen < 2; gen++) {
@@ -505,7 +498,7 @@ START_TEST(dry_walls_pass_over_their_rows)
     ck_assert_int_eq(vres_cells_reorder(&g, &d), 0);
     vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, NULL, ir);
     vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, d.vel, NULL, d.rho, d.press, ir, d.mass_p, d.type);
-    fluid_counts(n, d.type, nfl);
+    vres_sph_fluid_counts(n, d.type, nfl);
     vres_sph_general_cpu(n, &g, d.pos, d.vel, d.rho, d.press, d.mass_p, d.type, C3, ace, ar[0], vi, NULL,
                          VRES_DDT_FOURTAKAS, VRES_WALLS_DBC, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
     vres_sph3d_dbc_fourtakas_cpu(g.ncells + 1, &g, &P, &C3, ace, ar[1], vi, NULL);
