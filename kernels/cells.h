@@ -50,7 +50,7 @@ typedef struct vres_cells {
     size_t *begin;      /* [ncells + 2] sorted-slot offsets: cell c holds slots [begin[c], begin[c+1]);
                            slots [begin[ncells], n) hold the particles outside the box */
     size_t *perm;       /* [n] particle index (in the order given to the build) of each sorted slot */
-    int in_order;       /* 1 when perm is the identity (the particles were already in cell order): the
+    int in_order;       /* 1 when perm is the identity (the particles were already in the build's order): the
                            gathers then move nothing */
     int xsorted;        /* 1 when the last build left each cell's particles in ascending x (vres_cells_build
                            does; a backend's own sort may not), so that a row of cells is sorted by x */

@@ -357,6 +357,18 @@ START_TEST(interaction2d_equals_3d)
 }
 END_TEST
 
+/* consts() in 3D: the same h, c0 and coefficients, walls with their own viscosity, gravity with x
+ * and y components (so that Fourtakas' term has them), shifting mode 2. */
+static vres_sph_consts consts3d(void)
+{
+    const vres_sph_consts C = consts();
+    vres_sph_consts C3 = vres_sph_consts_make(3, C.h, C.cs0);
+    C3.alpha = C.alpha, C3.alpha_wall = 0.02, C3.ddt_khc = C.ddt_khc, C3.rho0 = C.rho0, C3.rho0_over_B = C.rho0_over_B;
+    C3.inv_gamma = C.inv_gamma, C3.g[0] = 0.5, C3.g[1] = -0.3, C3.g[2] = -9.81, C3.nu = C.nu, C3.nu_wall = 2e-3;
+    C3.shift_mode = 2;
+    return C3;
+}
+
 /* The 3D cell-wise interaction (vres_sph3d_*: interleaved arrays, merged row ranges, branch-free
  * candidate filter) adds the same terms in the same order as the per-particle one, so on a 3D
  * particle set (a jittered block of fluid over a fixed floor, a floating cube in it, a band of
@@ -368,11 +380,7 @@ END_TEST
 START_TEST(interaction3d_cells_equal_particles)
 {
     const double dp = 0.01, L = 0.08;
-    vres_sph_consts C = consts();
-    vres_sph_consts C3 = vres_sph_consts_make(3, C.h, C.cs0);
-    C3.alpha = C.alpha, C3.alpha_wall = 0.02, C3.ddt_khc = C.ddt_khc, C3.rho0 = C.rho0, C3.rho0_over_B = C.rho0_over_B;
-    C3.inv_gamma = C.inv_gamma, C3.g[0] = 0.5, C3.g[1] = -0.3, C3.g[2] = -9.81, C3.nu = C.nu, C3.nu_wall = 2e-3;
-    C3.shift_mode = 2;
+    const vres_sph_consts C3 = consts3d();
     vres_domain d;
     memset(&d, 0, sizeof d);
     srand(11);
@@ -463,10 +471,7 @@ END_TEST
 START_TEST(dry_walls_pass_over_their_rows)
 {
     const double dp = 0.01;
-    vres_sph_consts C = consts();
-    vres_sph_consts C3 = vres_sph_consts_make(3, C.h, C.cs0);
-    C3.alpha = C.alpha, C3.alpha_wall = 0.02, C3.ddt_khc = C.ddt_khc, C3.rho0 = C.rho0, C3.rho0_over_B = C.rho0_over_B;
-    C3.inv_gamma = C.inv_gamma, C3.g[2] = -9.81;
+    const vres_sph_consts C3 = consts3d();
     vres_domain d;
     memset(&d, 0, sizeof d);
     srand(5);
