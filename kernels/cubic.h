@@ -80,18 +80,35 @@ VRES_HD static inline double vres_cubic_f(vres_cubic k, double r)
     return k.fa * (q <= 1.0 ? inner : outer);
 }
 
-/* A particle's part R (m^5/(kg s^2) = Pa m^6/kg^2) of the tensile correction: 0.01 p/rho^2 for
- * p > 0, -0.2 p/rho^2 (= 0.2 |p|/rho^2) otherwise; p Pa, inv_rho 1/rho (m^3/kg). */
-VRES_HD static inline double vres_cubic_tensile_r(double p, double inv_rho)
+/* W(r) (m^-dim) and F(r) (m^-(dim+2)) in single precision, for the interaction's pair terms
+ * (kernels/sph.h): vres_cubic_w's and vres_cubic_f's operations on floats, the constants rounded
+ * to float once. */
+VRES_HD static inline float vres_cubic_wf(vres_cubic k, float r)
 {
-    return p * inv_rho * inv_rho * (p > 0.0 ? 0.01 : -0.2);
+    const float q = r * (float)k.inv_h, t0 = 2.0f - q, t = t0 > 0.0f ? t0 : 0.0f;
+    const float inner = 1.0f + q * q * (0.75f * q - 1.5f), outer = 0.25f * t * t * t;
+    return (float)k.alpha * (q <= 1.0f ? inner : outer);
+}
+VRES_HD static inline float vres_cubic_ff(vres_cubic k, float r)
+{
+    const float q = r * (float)k.inv_h, t0 = 2.0f - q, t = t0 > 0.0f ? t0 : 0.0f, qo = q > 1.0f ? q : 1.0f;
+    const float inner = 2.25f * q - 3.0f, outer = -0.75f * t * t / qo;
+    return (float)k.fa * (q <= 1.0f ? inner : outer);
+}
+
+/* A particle's part R (m^5/(kg s^2) = Pa m^6/kg^2) of the tensile correction: 0.01 p/rho^2 for
+ * p > 0, -0.2 p/rho^2 (= 0.2 |p|/rho^2) otherwise; p Pa, inv_rho 1/rho (m^3/kg). Single precision,
+ * as the pair terms (kernels/sph.h). */
+VRES_HD static inline float vres_cubic_tensile_rf(float p, float inv_rho)
+{
+    return p * inv_rho * inv_rho * (p > 0.0f ? 0.01f : -0.2f);
 }
 
 /* The tensile correction of a pair at distance r (m), (W(r)/W(h/1.5))^4 (R_a + R_b), added to
- * the pair's (p_a + p_b)/(rho_a rho_b) (m^5/(kg s^2)); ra, rb from vres_cubic_tensile_r. */
-VRES_HD static inline double vres_cubic_tensile(vres_cubic k, double r, double ra, double rb)
+ * the pair's (p_a + p_b)/(rho_a rho_b) (m^5/(kg s^2)); ra, rb from vres_cubic_tensile_rf. */
+VRES_HD static inline float vres_cubic_tensilef(vres_cubic k, float r, float ra, float rb)
 {
-    double f = vres_cubic_w(k, r) * k.inv_wdp;
+    float f = vres_cubic_wf(k, r) * (float)k.inv_wdp;
     f *= f;
     return f * f * (ra + rb);
 }

@@ -125,67 +125,61 @@ VRES_HD static inline double vres_sph_kernel_w(const vres_sph_consts *C, const i
     return kernel == VRES_KERNEL_CUBIC ? vres_cubic_w(C->kc, r) : vres_wendland_w(C->k, r);
 }
 
-/* Pressure force of b on a, added to acc (m/s^2): -m_b (p_a + p_b)/(rho_a rho_b) F x_ab.
- * mb kg, pa pb Pa, inv_rhoa inv_rhob 1/density (m^3/kg: reciprocals, so that a pair costs no
- * division here), fr = F x_ab = grad_a W_ab (m^-(dim+1)). Symmetric in a, b but for the sign
- * of fr, so m_a acc_a = -m_b acc_b: a pair conserves momentum. */
-VRES_HD static inline void vres_sph_pair_pressure(double mb, double pa, double pb, double inv_rhoa, double inv_rhob,
-                                                  const double fr[3], double acc[3])
+/* F(r) in single precision (the pair terms' kernel factor), kernel and r as vres_sph_kernel_f. */
+VRES_HD static inline float vres_sph_kernel_ff(const vres_sph_consts *C, const int kernel, float r)
 {
-    double prs = mb * (pa + pb) * inv_rhoa * inv_rhob;
-    acc[0] -= prs * fr[0];
-    acc[1] -= prs * fr[1];
-    acc[2] -= prs * fr[2];
+    return kernel == VRES_KERNEL_CUBIC ? vres_cubic_ff(C->kc, r) : vres_wendland_ff(C->k, r);
 }
 
-/* The same with the cubic spline's tensile correction (DualSPHysics', cubic.h): the pair's
- * (p_a + p_b)/(rho_a rho_b) plus tens = vres_cubic_tensile(...) (m^5/(kg s^2)), which is
- * symmetric in a, b too. */
-VRES_HD static inline void vres_sph_pair_pressure_tensile(double mb, double pa, double pb, double inv_rhoa,
-                                                          double inv_rhob, double tens, const double fr[3],
-                                                          double acc[3])
+/* The pair terms below are computed in single precision, as DualSPHysics computes them: x_ab and
+ * r^2 in double (positions are doubles), then rounded to float with every other input (velocities,
+ * densities and pressures are floats already); the sums over the pairs are doubles. Eight pairs
+ * fit one AVX2 instruction instead of four, and the interaction gathers half the bytes. The
+ * constants of C are rounded to float where they are used, so every caller gets the same bits. */
+
+/* The pressure coefficient of b on a, m_b (p_a + p_b)/(rho_a rho_b) (m^5/s^2), with the cubic
+ * spline (kernel VRES_KERNEL_CUBIC) its tensile correction added inside the brackets (cubic.h:
+ * f^4 (R_a + R_b), r the distance (m), ra a's part vres_cubic_tensile_rf). mb kg, pa pb Pa,
+ * inv_rhoa inv_rhob 1/density (m^3/kg: reciprocals, so that a pair costs no division here).
+ * Symmetric in a, b: with grad_a W_ab = -grad_b W_ba, m_a acc_a = -m_b acc_b (momentum kept). */
+VRES_HD static inline float vres_sph_pair_prs(const vres_sph_consts *C, const int kernel, float mb, float pa,
+                                              float pb, float inv_rhoa, float inv_rhob, float r, float ra)
 {
-    double prs = mb * ((pa + pb) * inv_rhoa * inv_rhob + tens);
-    acc[0] -= prs * fr[0];
-    acc[1] -= prs * fr[1];
-    acc[2] -= prs * fr[2];
+    if (kernel == VRES_KERNEL_CUBIC)
+        return mb * ((pa + pb) * inv_rhoa * inv_rhob +
+                     vres_cubic_tensilef(C->kc, r, ra, vres_cubic_tensile_rf(pb, inv_rhob)));
+    return mb * (pa + pb) * inv_rhoa * inv_rhob;
 }
 
-/* Monaghan's artificial viscosity of b on a, added to acc (m/s^2): -m_b Pi_ab grad_a W_ab with
- * Pi_ab = -alpha c0 mu / rhobar, mu = h x_ab.v_ab / (r^2 + eta2), only for approaching particles
- * (x_ab.v_ab < 0). inv_r2eta is 1/(r^2 + eta2) (m^-2). Returns x_ab.v_ab / (r^2 + eta2) (1/s),
- * whose maximum bounds the time step (DualSPHysics' ViscDt), for every pair, approaching or not. */
-VRES_HD static inline double vres_sph_pair_visc(const vres_sph_consts *C, double alpha, double mb, double rhoa,
-                                                double rhob, const double dx[3], const double dv[3], double inv_r2eta,
-                                                const double fr[3], double acc[3])
+/* Monaghan's artificial viscosity coefficient of b on a, m_b Pi_ab (m^5/s^2) with
+ * Pi_ab = -alpha c0 mu / rhobar, mu = h x_ab.v_ab / (r^2 + eta2), for approaching particles
+ * (dot = x_ab.v_ab < 0), else 0 (a select of an input: vector loops keep it). dot_rr2 is
+ * dot / (r^2 + eta2) (1/s), whose maximum over the pairs, approaching or not, bounds the time
+ * step (DualSPHysics' ViscDt). */
+VRES_HD static inline float vres_sph_pair_visc(const vres_sph_consts *C, float alpha, float mb, float rhoa, float rhob,
+                                               float dot, float dot_rr2)
 {
-    double dot = dx[0] * dv[0] + dx[1] * dv[1] + dx[2] * dv[2];
-    double dot_rr2 = dot * inv_r2eta;
-    if (dot < 0) {
-        double pi = -alpha * C->cs0 * C->h * dot_rr2 / (0.5 * (rhoa + rhob)) * mb;
-        acc[0] -= pi * fr[0];
-        acc[1] -= pi * fr[1];
-        acc[2] -= pi * fr[2];
-    }
-    return dot_rr2;
+    const float app = dot < 0.0f ? dot_rr2 : 0.0f;
+    return -alpha * (float)(C->cs0 * C->h) * app / (0.5f * (rhoa + rhob)) * mb;
 }
 
-/* Laminar viscosity of b on a, added to acc (m/s^2), in DualSPHysics' form of Lo & Shao (2002):
- *   m_b 4 nu (x_ab . grad_a W_ab) / ((rho_a + rho_b)(r^2 + eta2)) v_ab,
- * for every pair in the support (approaching or not); x_ab . grad_a W_ab = F r^2 < 0, so it
- * brakes the relative velocity. nu m^2/s, mb kg, rhoa rhob kg/m^3, inv_r2eta 1/(r^2 + eta2)
- * (m^-2). Symmetric in a, b: m_a acc_a = -m_b acc_b. Returns x_ab.v_ab / (r^2 + eta2) (1/s)
- * for the time step, as vres_sph_pair_visc. */
-VRES_HD static inline double vres_sph_pair_laminar(double nu, double mb, double rhoa, double rhob, const double dx[3],
-                                                   const double dv[3], double inv_r2eta, const double fr[3],
-                                                   double acc[3])
+/* Laminar viscosity coefficient of b on a (1/s), in DualSPHysics' form of
+ * Lo & Shao (2002): m_b 4 nu (x_ab . grad_a W_ab) / ((rho_a + rho_b)(r^2 + eta2)), which times
+ * v_ab is b's viscous acceleration on a, for every pair in the support (approaching or not);
+ * xf = x_ab . grad_a W_ab = F r^2 < 0, so it brakes the relative velocity. nu m^2/s, mb kg,
+ * rhoa rhob kg/m^3, inv_r2eta 1/(r^2 + eta2) (m^-2). Symmetric in a, b. */
+VRES_HD static inline float vres_sph_pair_laminar(float nu, float mb, float rhoa, float rhob, float xf, float inv_r2eta)
 {
-    double xf = dx[0] * fr[0] + dx[1] * fr[1] + dx[2] * fr[2];
-    double vt = mb * 4.0 * nu * xf * inv_r2eta / (rhoa + rhob);
-    acc[0] += vt * dv[0];
-    acc[1] += vt * dv[1];
-    acc[2] += vt * dv[2];
-    return (dx[0] * dv[0] + dx[1] * dv[1] + dx[2] * dv[2]) * inv_r2eta;
+    return mb * 4.0f * nu * xf * inv_r2eta / (rhoa + rhob);
+}
+
+/* One component of b's acceleration of a (m/s^2) from the pressure coefficient prs and the
+ * viscous one vc (vres_sph_pair_visc or, viscosity laminar, vres_sph_pair_laminar), fr that
+ * component of grad_a W_ab (m^-(dim+1)), dv that of v_ab (m/s): -(prs + vc) fr (artificial), or
+ * vc dv - prs fr (laminar). One term per pair and component, so a's sums add once per pair. */
+VRES_HD static inline float vres_sph_pair_acc(const int viscosity, float prs, float vc, float fr, float dv)
+{
+    return VRES_VISC_IS_LAMINAR(viscosity) ? vc * dv - prs * fr : -((prs + vc) * fr);
 }
 
 /* Density diffusion of b on a (kg/m^3/s), delta-SPH in DualSPHysics' form:
@@ -193,22 +187,23 @@ VRES_HD static inline double vres_sph_pair_laminar(double nu, double mb, double 
  * which lowers the denser of two particles (F < 0). Molteni (fourtakas = 0): rho^H_ab = 0.
  * Fourtakas: rho^H_ab = rho0 ((1 - rho0 g.x_ab / B)^(1/gamma) - 1) is the density difference
  * rho_b - rho_a the hydrostatic pressure difference rho0 g.(x_b - x_a) accounts for, so a
- * column at rest (hydrostatic density) feels none. F in m^-(dim+2), r2 m^2, inv_r2eta
- * 1/(r^2 + eta2) (m^-2), inv_rhob 1/rho_b (m^3/kg). */
-VRES_HD static inline double vres_sph_pair_ddt(const vres_sph_consts *C, int fourtakas, double mb, double rhoa,
-                                               double rhob, double inv_rhob, const double dx[3], double r2,
-                                               double inv_r2eta, double F)
+ * column at rest (hydrostatic density) feels none. x_ab = (dx, dy, dz) (m), F in m^-(dim+2),
+ * r2 m^2, inv_r2eta 1/(r^2 + eta2) (m^-2), inv_rhob 1/rho_b (m^3/kg). */
+VRES_HD static inline float vres_sph_pair_ddt(const vres_sph_consts *C, int fourtakas, float mb, float rhoa,
+                                              float rhob, float inv_rhob, float dx, float dy, float dz, float r2,
+                                              float inv_r2eta, float F)
 {
-    double drho = rhoa - rhob;
+    float drho = rhoa - rhob;
     if (fourtakas) {
         /* (1 + x)^(1/gamma) - 1 by its series to x^3: x = -rho0 g.x_ab / B is below 1e-3 within
            a kernel support (|g| 2h rho0 / B ~ 2h |g| gamma / c0^2), so the x^4 term is below
            1e-13 relative: far under float density, and no pow per pair (the coefficients
            (e - 1)/2 and (e - 2)/3 are constants of the run, so no division per pair either) */
-        double x = -C->rho0_over_B * (C->g[0] * dx[0] + C->g[1] * dx[1] + C->g[2] * dx[2]), e = C->inv_gamma;
-        drho += C->rho0 * x * e * (1.0 + x * ((e - 1.0) / 2.0) * (1.0 + x * ((e - 2.0) / 3.0)));
+        const float gd = (float)C->g[0] * dx + (float)C->g[1] * dy + (float)C->g[2] * dz;
+        const float x = -(float)C->rho0_over_B * gd, e = (float)C->inv_gamma;
+        drho += (float)C->rho0 * x * e * (1.0f + x * ((e - 1.0f) / 2.0f) * (1.0f + x * ((e - 2.0f) / 3.0f)));
     }
-    return C->ddt_khc * drho * F * r2 * inv_r2eta * mb * inv_rhob;
+    return (float)C->ddt_khc * drho * F * r2 * inv_r2eta * mb * inv_rhob;
 }
 
 /* The rates of buffer particle a, which the interaction does not compute: its momentum and
@@ -308,9 +303,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
     const int fluid_a = !walls || vres_type_is_fluid(type[a]);
     const int float_a = walls == VRES_WALLS_FLOATING && vres_type_is_floating(type[a]);
     const double xa[3] = {pos[3 * a], pos[3 * a + 1], pos[3 * a + 2]};
-    const double va[3] = {vel[3 * a], vel[3 * a + 1], vel[3 * a + 2]};
-    const double rhoa = rho[a], inv_rhoa = 1.0 / rhoa, pa = press[a];
-    const double ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_r(pa, inv_rhoa) : 0.0; /* a's tensile part */
+    const float va[3] = {vel[3 * a], vel[3 * a + 1], vel[3 * a + 2]};
+    const float rhoa = rho[a], inv_rhoa = 1.0f / rhoa, pa = press[a];
+    const float ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_rf(pa, inv_rhoa) : 0.0f; /* a's tensile part */
+    const float visc_fluid = (float)(VRES_VISC_IS_LAMINAR(viscosity) ? C.nu : C.alpha);      /* a pair's Visco */
+    const float visc_wall = (float)(VRES_VISC_IS_LAMINAR(viscosity) ? C.nu_wall : C.alpha_wall);
     double acc[3] = {0, 0, 0}, arp = 0, vmax = 0, diff = 0, gc[3] = {0, 0, 0}, divr = 0;
     int noshift = 0;
     vres_cell_range nb[27];
@@ -322,42 +319,39 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
             if (!fluid_a && wall_b && !vres_sph_walls_meet(walls, type[a], type[b])) continue;
             /* DBC: a wall's density ignores buffer particles (vres_sph_interact's comment) */
             if (!fluid_a && !float_a && vres_type_is_buffer(type[b])) continue;
-            double dx[3] = {xa[0] - (pos[3 * b] + nb[c].shift[0]), xa[1] - (pos[3 * b + 1] + nb[c].shift[1]),
-                            xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
-            double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+            const double dx[3] = {xa[0] - (pos[3 * b] + nb[c].shift[0]), xa[1] - (pos[3 * b + 1] + nb[c].shift[1]),
+                                  xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
+            const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
             if (r2 >= C.fourh2 || r2 < 1e-18 * C.fourh2) continue; /* outside the support, or a itself */
-            double r = sqrt(r2), F = vres_sph_kernel_f(&C, kernel, r);
-            double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
-            double dv[3] = {va[0] - vel[3 * b], va[1] - vel[3 * b + 1], va[2] - vel[3 * b + 2]};
-            double mb = mass[b], rhob = rho[b], inv_r2eta = 1.0 / (r2 + C.eta2);
+            /* the pair terms in single precision (vres_sph_pair_prs' comment) */
+            const float fx[3] = {(float)dx[0], (float)dx[1], (float)dx[2]}, fr2 = (float)r2, r = sqrtf(fr2);
+            const float F = vres_sph_kernel_ff(&C, kernel, r);
+            const float fr[3] = {F * fx[0], F * fx[1], F * fx[2]};
+            const float dv[3] = {va[0] - vel[3 * b], va[1] - vel[3 * b + 1], va[2] - vel[3 * b + 2]};
+            const float mb = (float)mass[b], rhob = rho[b], inv_r2eta = 1.0f / (fr2 + (float)C.eta2);
+            const float dot = fx[0] * dv[0] + fx[1] * dv[1] + fx[2] * dv[2], rate = dot * inv_r2eta;
             /* a floating body's density leaves buffer particles out too (its force takes them) */
             if (!float_a || !vres_type_is_buffer(type[b])) arp += mb * (dv[0] * fr[0] + dv[1] * fr[1] + dv[2] * fr[2]);
-            if (!fluid_a && !float_a) {
-                double rate = (dx[0] * dv[0] + dx[1] * dv[1] + dx[2] * dv[2]) * inv_r2eta;
-                vmax = rate > vmax ? rate : vmax;
-                continue;
-            }
-            double inv_rhob = 1.0 / rhob;
-            if (kernel == VRES_KERNEL_CUBIC)
-                vres_sph_pair_pressure_tensile(mb, pa, press[b], inv_rhoa, inv_rhob,
-                                               vres_cubic_tensile(C.kc, r, ra, vres_cubic_tensile_r(press[b], inv_rhob)),
-                                               fr, acc);
-            else vres_sph_pair_pressure(mb, pa, press[b], inv_rhoa, inv_rhob, fr, acc);
-            double rate = VRES_VISC_IS_LAMINAR(viscosity)
-                              ? vres_sph_pair_laminar(wall_b || float_a ? C.nu_wall : C.nu, mb, rhoa, rhob, dx, dv,
-                                                      inv_r2eta, fr, acc)
-                              : vres_sph_pair_visc(&C, wall_b || float_a ? C.alpha_wall : C.alpha, mb, rhoa, rhob, dx,
-                                                   dv, inv_r2eta, fr, acc);
             vmax = rate > vmax ? rate : vmax;
+            if (!fluid_a && !float_a) continue;
+            const float inv_rhob = 1.0f / rhob, vis = wall_b || float_a ? visc_wall : visc_fluid;
+            const float prs = vres_sph_pair_prs(&C, kernel, mb, pa, press[b], inv_rhoa, inv_rhob, r, ra);
+            const float vc = VRES_VISC_IS_LAMINAR(viscosity)
+                                 ? vres_sph_pair_laminar(vis, mb, rhoa, rhob,
+                                                         fx[0] * fr[0] + fx[1] * fr[1] + fx[2] * fr[2], inv_r2eta)
+                                 : vres_sph_pair_visc(&C, vis, mb, rhoa, rhob, dot, rate);
+            for (int k = 0; k < 3; k++) acc[k] += vres_sph_pair_acc(viscosity, prs, vc, fr[k], dv[k]);
             if (ddt != VRES_DDT_NONE && !wall_b && !float_a)
-                diff += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob, dx, r2, inv_r2eta, F);
-            if (shift) {
-                double vol = mb * inv_rhob;
+                diff += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob, fx[0], fx[1], fx[2],
+                                          fr2, inv_r2eta, F);
+            if (shift) { /* in double, as vres_sph_shift_sums (a buffer particle's) */
+                const double Fd = vres_sph_kernel_f(&C, kernel, sqrt(r2)), vol = mass[b] * (1.0 / (double)rhob);
+                const double frd[3] = {Fd * dx[0], Fd * dx[1], Fd * dx[2]};
                 if (wall_b && vres_sph_wall_stops_shift(&C, type[b])) noshift = 1;
-                gc[0] += vol * fr[0];
-                gc[1] += vol * fr[1];
-                gc[2] += vol * fr[2];
-                divr -= vol * (dx[0] * fr[0] + dx[1] * fr[1] + dx[2] * fr[2]);
+                gc[0] += vol * frd[0];
+                gc[1] += vol * frd[1];
+                gc[2] += vol * frd[2];
+                divr -= vol * (dx[0] * frd[0] + dx[1] * frd[1] + dx[2] * frd[2]);
             }
         }
     if (shift && fluid_a) {
@@ -724,6 +718,57 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_cand_d(const vres_sph_cand
     *dy = dim == 3 ? ya - (P->y[b] + sy) : 0.0;
 }
 
+/* The kept pairs of one pass of the cell-wise interaction (vres_sph_interact_v): what the physics
+ * needs of each neighbour b, in single precision (vres_sph_pair_prs' comment). */
+typedef struct vres_sph_pairs {
+    float dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
+    float r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
+    float vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s; vy 3D) */
+    float mb[VRES_SPH_LIST];                                       /* b's mass (kg) */
+    float rhob[VRES_SPH_LIST];                                     /* b's density (kg/m^3) */
+    float pb[VRES_SPH_LIST];                                       /* b's pressure (Pa) */
+    float wall[VRES_SPH_LIST]; /* 1 for a wall b, else 0 (set when walls) */
+    uint8_t buf[VRES_SPH_LIST]; /* 1 for a buffer b (set for a floating a) */
+} vres_sph_pairs;
+
+/* The same pairs' data in double, for the shifting and SPS terms (vres_sph_interact_v). */
+typedef struct vres_sph_pairs_d {
+    double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
+    double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
+    double mb[VRES_SPH_LIST];                                       /* b's mass (kg) */
+    double inv_rhob[VRES_SPH_LIST];                                 /* 1/rho_b (m^3/kg) */
+} vres_sph_pairs_d;
+
+/* Pair k of Q (and of D with dbl) from candidate i of pass L of particle a at (xa, ya, za) (m),
+ * in dimension dim; walls, float_a and shift as in vres_sph_interact_v. Returns 1 when b is a wall particle (it does not
+ * act as fluid); sets *noshift when it cancels a's shifting (shift). */
+VRES_HD static inline VRES_FORCE_INLINE int vres_sph_gather(vres_sph_pairs *Q, vres_sph_pairs_d *D, int k,
+                                                            const vres_sph_cands *L, int i,
+                                                            const vres_sph_stencil *St, const vres_sph_arrays *P,
+                                                            const vres_sph_consts *C, double xa, double ya,
+                                                            double za, const int dim, const int walls,
+                                                            const int float_a, const int shift, const int dbl,
+                                                            int *noshift)
+{
+    const int SV = VRES_SPH_VSTRIDE(dim);
+    const size_t b = L->b[i];
+    const int wall_b = walls && !vres_type_acts_fluid(P->type[b]);
+    double dx, dy, dz;
+    vres_sph_cand_d(L, St, P, i, xa, ya, za, dim, &dx, &dy, &dz);
+    Q->dx[k] = (float)dx, Q->dy[k] = (float)dy, Q->dz[k] = (float)dz, Q->r2[k] = (float)L->r2[i];
+    Q->vx[k] = P->vx[b * SV], Q->vz[k] = P->vz[b * SV], Q->mb[k] = (float)P->mass[b];
+    if (dim == 3) Q->vy[k] = P->vy[b * SV];
+    Q->rhob[k] = P->rho[b], Q->pb[k] = P->press[b];
+    if (dbl) {
+        D->dx[k] = dx, D->dy[k] = dy, D->dz[k] = dz, D->r2[k] = L->r2[i];
+        D->mb[k] = P->mass[b], D->inv_rhob[k] = P->inv_rho[b];
+    }
+    if (walls) Q->wall[k] = (float)wall_b;
+    if (float_a) Q->buf[k] = (uint8_t)vres_type_is_buffer(P->type[b]);
+    if (shift && wall_b && vres_sph_wall_stops_shift(C, P->type[b])) *noshift = 1;
+    return wall_b;
+}
+
 /* The next pass of particle a's candidates (at xa, ya, za, m) in the ranges of its stencil St,
  * from range *c at slot *b0 on (both advanced past the pass), ranges whose row lies out of reach
  * (vres_sph_row_reaches) passed over whole, and with wet_only those without a particle that acts
@@ -940,40 +985,27 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
        it passes over the rows without any (most walls of a dam break are dry), which changes no sum */
     const int dry_walls = walls == VRES_WALLS_DBC && !fluid_a && P->nfl;
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
-    const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
-    const double rhoa = P->rho[a], inv_rhoa = P->inv_rho[a], pa = P->press[a];
-    const double eta2 = C->eta2;
-    const vres_wendland k = C->k;
-    const vres_cubic kc = C->kc;
-    const double ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_r(pa, inv_rhoa) : 0.0; /* a's tensile part */
+    const float vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0f, vza = P->vz[a * SV];
+    const float rhoa = P->rho[a], inv_rhoa = 1.0f / rhoa, pa = P->press[a];
+    const float eta2 = (float)C->eta2;
+    const float ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_rf(pa, inv_rhoa) : 0.0f; /* a's tensile part */
     /* Visco of a fluid and of a wall neighbour: artificial viscosity alpha or laminar nu */
-    const double visc_fluid = VRES_VISC_IS_LAMINAR(viscosity) ? C->nu : C->alpha;
-    const double visc_wall = VRES_VISC_IS_LAMINAR(viscosity) ? C->nu_wall : C->alpha_wall;
+    const float visc_fluid = (float)(VRES_VISC_IS_LAMINAR(viscosity) ? C->nu : C->alpha);
+    const float visc_wall = (float)(VRES_VISC_IS_LAMINAR(viscosity) ? C->nu_wall : C->alpha_wall);
     const int sps = viscosity == VRES_VISC_SPS && fluid_a; /* sums a's strain (vres_sph_tau_v) */
+    const int dbl = shift || sps;                          /* the pairs' double-precision data are gathered too */
     double accx = 0, accy = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcy = 0, gcz = 0, divr = 0;
     double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0; /* laminar+SPS: a's two_strain (1/s) */
     int noshift = 0;
     vres_sph_cands L;
-    struct { /* the kept pairs: what the physics needs of b */
-        double dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
-        double r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
-        double vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s; vy 3D) */
-        double mb[VRES_SPH_LIST];                    /* b's mass (kg) */
-        double rhob[VRES_SPH_LIST];                  /* b's density (kg/m^3) */
-        double inv_rhob[VRES_SPH_LIST];              /* 1/rho_b (m^3/kg) */
-        double pb[VRES_SPH_LIST];                    /* b's pressure (Pa) */
-        double wall[VRES_SPH_LIST];                  /* 1 for a wall b, else 0 (set when walls) */
-        double visc[VRES_SPH_LIST];                  /* the pair's Visco: visc_fluid or visc_wall (set when walls) */
-        uint8_t buf[VRES_SPH_LIST];                  /* 1 for a buffer b (set for a floating a) */
-    } Q;
+    vres_sph_pairs Q;
+    vres_sph_pairs_d D;
     struct { /* each kept pair's terms of a's sums */
-        double arp[VRES_SPH_LIST];  /* continuity m_b v_ab . grad_a W_ab (kg/m^3/s) */
-        double rate[VRES_SPH_LIST]; /* x_ab . v_ab / (r^2 + eta2) (1/s) */
-        double px[VRES_SPH_LIST], py[VRES_SPH_LIST], pz[VRES_SPH_LIST]; /* pressure term, subtracted from acc
-                                                                           (m/s^2; py 3D) */
-        double vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* viscous term: subtracted
-                                                        (artificial) or added (laminar) (m/s^2; vy 3D) */
-        double diff[VRES_SPH_LIST]; /* density diffusion (kg/m^3/s; 0 for a wall b) */
+        float arp[VRES_SPH_LIST];  /* continuity m_b v_ab . grad_a W_ab (kg/m^3/s) */
+        float rate[VRES_SPH_LIST]; /* x_ab . v_ab / (r^2 + eta2) (1/s) */
+        float ax[VRES_SPH_LIST], ay[VRES_SPH_LIST], az[VRES_SPH_LIST]; /* pressure and viscous acceleration
+                                                                          (vres_sph_pair_acc; m/s^2; ay 3D) */
+        float diff[VRES_SPH_LIST]; /* density diffusion (kg/m^3/s; 0 for a wall b) */
         double gx[VRES_SPH_LIST], gy[VRES_SPH_LIST], gz[VRES_SPH_LIST]; /* shifting: V_b grad_a W_ab (1/m; gy 3D) */
         double div[VRES_SPH_LIST];  /* shifting: V_b x_ab . grad_a W_ab (subtracted from div r) */
         double s[6][VRES_SPH_LIST]; /* laminar+SPS: two_strain terms xx, xy, xz, yy, yz, zz (1/s; xy, yy, yz 3D) */
@@ -985,106 +1017,77 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
         /* 3: their data; a wall particle a (DBC) leaves out its wall and buffer neighbours */
         int np = 0;
         if (fluid_a) { /* every kept neighbour is a pair: slot j is pair j, no store waits on a count */
-            for (int j = 0; j < nkept; j++) {
-                const int i = L.kept[j];
-                const size_t b = L.b[i];
-                vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &Q.dx[j], &Q.dy[j], &Q.dz[j]);
-                Q.r2[j] = L.r2[i];
-                Q.vx[j] = P->vx[b * SV], Q.vz[j] = P->vz[b * SV], Q.mb[j] = P->mass[b];
-                if (D3) Q.vy[j] = P->vy[b * SV];
-                Q.rhob[j] = P->rho[b], Q.inv_rhob[j] = P->inv_rho[b], Q.pb[j] = P->press[b];
-                if (walls) {
-                    const int wall_b = !vres_type_acts_fluid(P->type[b]);
-                    Q.wall[j] = wall_b, Q.visc[j] = wall_b || float_a ? visc_wall : visc_fluid;
-                    if (shift && wall_b && vres_sph_wall_stops_shift(C, P->type[b])) noshift = 1;
-                }
-            }
+            for (int j = 0; j < nkept; j++)
+                vres_sph_gather(&Q, &D, j, &L, L.kept[j], St, P, C, xa, ya, za, dim, walls, float_a, shift, dbl,
+                                &noshift);
             np = nkept;
         } else for (int j = 0; j < nkept; j++) {
-            const int i = L.kept[j];
-            const size_t b = L.b[i];
-            const int wall_b = walls && !vres_type_acts_fluid(P->type[b]);
-            vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &Q.dx[np], &Q.dy[np], &Q.dz[np]);
-            Q.r2[np] = L.r2[i];
-            Q.vx[np] = P->vx[b * SV], Q.vz[np] = P->vz[b * SV], Q.mb[np] = P->mass[b];
-            if (D3) Q.vy[np] = P->vy[b * SV];
-            Q.rhob[np] = P->rho[b], Q.inv_rhob[np] = P->inv_rho[b], Q.pb[np] = P->press[b];
-            if (walls) Q.wall[np] = wall_b, Q.visc[np] = wall_b || float_a ? visc_wall : visc_fluid;
-            if (float_a) Q.buf[np] = (uint8_t)vres_type_is_buffer(P->type[b]);
-            if (shift && wall_b && vres_sph_wall_stops_shift(C, P->type[b])) noshift = 1;
-            np += (fluid_a || !wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b])) &&
-                  (fluid_a || float_a || !vres_type_is_buffer(P->type[b])); /* nor buffer particles */
+            const size_t b = L.b[L.kept[j]];
+            const int wall_b = vres_sph_gather(&Q, &D, np, &L, L.kept[j], St, P, C, xa, ya, za, dim, walls, float_a,
+                                               shift, dbl, &noshift);
+            np += (!wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b])) &&
+                  (float_a || !vres_type_is_buffer(P->type[b])); /* nor buffer particles */
         }
-        /* 4: the pair terms. Where vres_sph_interact skips a term, a select of one of its
-           inputs makes it zero: a select of the term itself would have the compiler compute the
-           term in a branch (it may not compute, in every vector lane, a floating-point operation
-           that could trap and that the program does not always ask for), and the loop would not
-           be vectorised. Each dot product adds x, y, z in that order, as the scalar form. */
+        /* 4: the pair terms, by the pair functions. Where vres_sph_interact skips a term, a select
+           of one of its inputs makes it zero: a select of the term itself would have the compiler
+           compute the term in a branch (it may not compute, in every vector lane, a floating-point
+           operation that could trap and that the program does not always ask for), and the loop
+           would not be vectorised. Each dot product adds x, y, z in that order, as the scalar form. */
 #pragma omp simd
         for (int j = 0; j < np; j++) {
-            const double dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j], mb = Q.mb[j], rhob = Q.rhob[j];
-            const double dy = D3 ? Q.dy[j] : 0.0;
-            const double r = sqrt(r2);
-            const double F = kernel == VRES_KERNEL_CUBIC ? vres_cubic_f(kc, r) : vres_wendland_f(k, r);
-            const double frx = F * dx, fry = F * dy, frz = F * dz;
-            const double dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j], dvy = D3 ? vya - Q.vy[j] : 0.0;
-            const double inv_r2eta = 1.0 / (r2 + eta2), inv_rhob = Q.inv_rhob[j];
+            const float dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j], mb = Q.mb[j], rhob = Q.rhob[j];
+            const float dy = D3 ? Q.dy[j] : 0.0f;
+            const float r = sqrtf(r2), F = vres_sph_kernel_ff(C, kernel, r);
+            const float frx = F * dx, fry = F * dy, frz = F * dz;
+            const float dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j], dvy = D3 ? vya - Q.vy[j] : 0.0f;
+            const float inv_r2eta = 1.0f / (r2 + eta2), inv_rhob = 1.0f / rhob;
             T.arp[j] = mb * (D3 ? dvx * frx + dvy * fry + dvz * frz : dvx * frx + dvz * frz);
-            const double dot = D3 ? dx * dvx + dy * dvy + dz * dvz : dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
+            const float dot = D3 ? dx * dvx + dy * dvy + dz * dvz : dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
             T.rate[j] = dot_rr2;
-            /* vres_sph_pair_pressure, or _tensile with the cubic spline */
-            const double prs = kernel == VRES_KERNEL_CUBIC
-                                   ? mb * ((pa + Q.pb[j]) * inv_rhoa * inv_rhob +
-                                           vres_cubic_tensile(kc, r, ra, vres_cubic_tensile_r(Q.pb[j], inv_rhob)))
-                                   : mb * (pa + Q.pb[j]) * inv_rhoa * inv_rhob;
-            T.px[j] = prs * frx;
-            T.pz[j] = prs * frz;
-            if (D3) T.py[j] = prs * fry;
-            if (VRES_VISC_IS_LAMINAR(viscosity)) { /* vres_sph_pair_laminar */
-                const double nu = walls ? Q.visc[j] : visc_fluid;
-                const double xf = D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz;
-                const double vt = mb * 4.0 * nu * xf * inv_r2eta / (rhoa + rhob);
-                T.vx[j] = vt * dvx;
-                T.vz[j] = vt * dvz;
-                if (D3) T.vy[j] = vt * dvy;
-            } else { /* vres_sph_pair_visc: zero for a separating pair (dot >= 0) */
-                const double app_rr2 = dot < 0 ? dot_rr2 : 0.0;
-                const double alpha = walls ? Q.visc[j] : visc_fluid;
-                const double pi = -alpha * C->cs0 * C->h * app_rr2 / (0.5 * (rhoa + rhob)) * mb;
-                T.vx[j] = pi * frx;
-                T.vz[j] = pi * frz;
-                if (D3) T.vy[j] = pi * fry;
-            }
-            if (ddt != VRES_DDT_NONE) { /* vres_sph_pair_ddt, fluid-fluid pairs only */
-                double drho = rhoa - rhob;
-                if (ddt == VRES_DDT_FOURTAKAS) {
-                    const double gd = D3 ? C->g[0] * dx + C->g[1] * dy + C->g[2] * dz : C->g[0] * dx + C->g[2] * dz;
-                    double x = -C->rho0_over_B * gd, e = C->inv_gamma;
-                    drho += C->rho0 * x * e * (1.0 + x * ((e - 1.0) / 2.0) * (1.0 + x * ((e - 2.0) / 3.0)));
-                }
-                const double mf = walls && Q.wall[j] != 0 ? 0.0 : mb;
-                T.diff[j] = C->ddt_khc * drho * F * r2 * inv_r2eta * mf * inv_rhob;
-            }
-            if (sps) { /* vres_sph_tau_v's terms, operation for operation */
-                const double svol = -(mb * inv_rhob), du = dvx * svol, dw = dvz * svol;
-                T.s[0][j] = du * frx;
-                T.s[2][j] = du * frz + dw * frx;
-                T.s[5][j] = dw * frz;
-                if (D3) {
-                    const double dv = dvy * svol;
-                    T.s[1][j] = du * fry + dv * frx;
-                    T.s[3][j] = dv * fry;
-                    T.s[4][j] = dv * frz + dw * fry;
-                }
-            }
-            if (shift) {
-                const double vol = mb * inv_rhob;
-                T.gx[j] = vol * frx;
-                T.gz[j] = vol * frz;
-                if (D3) T.gy[j] = vol * fry;
-                T.div[j] = vol * (D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz);
+            const float prs = vres_sph_pair_prs(C, kernel, mb, pa, Q.pb[j], inv_rhoa, inv_rhob, r, ra);
+            const float vis = walls && (float_a || Q.wall[j] != 0.0f) ? visc_wall : visc_fluid; /* the pair's Visco */
+            const float vc = VRES_VISC_IS_LAMINAR(viscosity)
+                                 ? vres_sph_pair_laminar(vis, mb, rhoa, rhob,
+                                                         D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz,
+                                                         inv_r2eta)
+                                 : vres_sph_pair_visc(C, vis, mb, rhoa, rhob, dot, dot_rr2);
+            T.ax[j] = vres_sph_pair_acc(viscosity, prs, vc, frx, dvx);
+            T.az[j] = vres_sph_pair_acc(viscosity, prs, vc, frz, dvz);
+            if (D3) T.ay[j] = vres_sph_pair_acc(viscosity, prs, vc, fry, dvy);
+            if (ddt != VRES_DDT_NONE) { /* fluid-fluid pairs only: a wall b's mass taken as 0 */
+                const float mf = walls && Q.wall[j] != 0.0f ? 0.0f : mb;
+                T.diff[j] = vres_sph_pair_ddt(C, ddt == VRES_DDT_FOURTAKAS, mf, rhoa, rhob, inv_rhob, dx, dy, dz, r2,
+                                              inv_r2eta, F);
             }
         }
+        if (dbl) /* the shifting and SPS terms in double, as vres_sph_interact, vres_sph_shift_sums and
+                    vres_sph_tau_v compute them */
+#pragma omp simd
+            for (int j = 0; j < np; j++) {
+                const double dx = D.dx[j], dz = D.dz[j], dy = D3 ? D.dy[j] : 0.0;
+                const double F = vres_sph_kernel_f(C, kernel, sqrt(D.r2[j]));
+                const double frx = F * dx, fry = F * dy, frz = F * dz;
+                if (sps) { /* vres_sph_tau_v's terms, operation for operation */
+                    const double svol = -(D.mb[j] * D.inv_rhob[j]);
+                    const double du = ((double)vxa - Q.vx[j]) * svol, dw = ((double)vza - Q.vz[j]) * svol;
+                    T.s[0][j] = du * frx;
+                    T.s[2][j] = du * frz + dw * frx;
+                    T.s[5][j] = dw * frz;
+                    if (D3) {
+                        const double dv = ((double)vya - Q.vy[j]) * svol;
+                        T.s[1][j] = du * fry + dv * frx;
+                        T.s[3][j] = dv * fry;
+                        T.s[4][j] = dv * frz + dw * fry;
+                    }
+                }
+                if (shift) {
+                    const double vol = D.mb[j] * D.inv_rhob[j];
+                    T.gx[j] = vol * frx;
+                    T.gz[j] = vol * frz;
+                    if (D3) T.gy[j] = vol * fry;
+                    T.div[j] = vol * (D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz);
+                }
+            }
         /* 5: the sums, in pair order (a wall particle a sums only its density rate, a floating
            one its acceleration too, without density diffusion) */
         for (int j = 0; j < np; j++) {
@@ -1093,18 +1096,9 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
         }
         if (fluid_a || float_a)
             for (int j = 0; j < np; j++) {
-                accx -= T.px[j];
-                if (D3) accy -= T.py[j];
-                accz -= T.pz[j];
-                if (VRES_VISC_IS_LAMINAR(viscosity)) {
-                    accx += T.vx[j];
-                    if (D3) accy += T.vy[j];
-                    accz += T.vz[j];
-                } else {
-                    accx -= T.vx[j];
-                    if (D3) accy -= T.vy[j];
-                    accz -= T.vz[j];
-                }
+                accx += T.ax[j];
+                if (D3) accy += T.ay[j];
+                accz += T.az[j];
                 if (ddt != VRES_DDT_NONE && !float_a) diff += T.diff[j];
                 if (shift) {
                     gcx += T.gx[j];

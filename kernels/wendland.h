@@ -80,4 +80,13 @@ VRES_HD static inline double vres_wendland_dfdr(vres_wendland k, double r)
     return -1.5 * k.fgrad * t * t * k.inv_h;
 }
 
+/* F(r) in single precision (m^-(dim+2)), for the interaction's pair terms (kernels/sph.h):
+ * vres_wendland_f's operations on floats, the constants rounded to float once. */
+VRES_HD static inline float vres_wendland_ff(vres_wendland k, float r)
+{
+    float t = 1.0f - 0.5f * (r * (float)k.inv_h);
+    t = t > 0.0f ? t : 0.0f;
+    return (float)k.fgrad * t * t * t;
+}
+
 #endif

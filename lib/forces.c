@@ -231,8 +231,11 @@ static size_t particle_force(const vres_domain *d, size_t i, const fluid_set *f,
                              const force_cfg *c, double out[3])
 {
     const double xa[3] = {d->pos[3 * i], d->pos[3 * i + 1], d->pos[3 * i + 2]};
-    const double va[3] = {d->vel[3 * i], d->vel[3 * i + 1], d->vel[3 * i + 2]};
-    const double rhoa = d->rho[i], inv_rhoa = 1.0 / rhoa, pa = d->press[i];
+    const float va[3] = {d->vel[3 * i], d->vel[3 * i + 1], d->vel[3 * i + 2]};
+    const float rhoa = d->rho[i], inv_rhoa = 1.0f / rhoa, pa = d->press[i];
+    const float ra = C->kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_rf(pa, inv_rhoa) : 0.0f; /* tensile part */
+    const int laminar = c->visco_kind == VRES_VISC_LAMINAR;
+    const float vis = (float)(laminar ? C->nu_wall : C->alpha_wall); /* the fluid-wall Visco */
     double acc[3] = {0, 0, 0};
     size_t nn = 0;
     vres_cell_range nb[27];
@@ -243,25 +246,24 @@ static size_t particle_force(const vres_domain *d, size_t i, const fluid_set *f,
                             xa[2] - (f->pos[3 * b + 2] + nb[q].shift[2])};
             double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
             if (r2 >= C->fourh2 || r2 < 1e-18 * C->fourh2) continue; /* the solver's own test */
-            double r = sqrt(r2), F = vres_sph_kernel_f(C, C->kernel, r);
-            double fr[3] = {F * dx[0], F * dx[1], F * dx[2]};
-            double dv[3] = {va[0] - f->vel[3 * b], va[1] - f->vel[3 * b + 1], va[2] - f->vel[3 * b + 2]};
-            double mb = f->mass[b], rhob = f->rho[b], inv_r2eta = 1.0 / (r2 + C->eta2);
-            if (C->kernel == VRES_KERNEL_CUBIC) /* with the tensile correction, as the solver */
-                vres_sph_pair_pressure_tensile(
-                    mb, pa, f->press[b], inv_rhoa, 1.0 / rhob,
-                    vres_cubic_tensile(C->kc, r, vres_cubic_tensile_r(pa, inv_rhoa), vres_cubic_tensile_r(f->press[b], 1.0 / rhob)),
-                    fr, acc);
-            else vres_sph_pair_pressure(mb, pa, f->press[b], inv_rhoa, 1.0 / rhob, fr, acc);
-            if (c->visco_kind == VRES_VISC_LAMINAR)
-                vres_sph_pair_laminar(C->nu_wall, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc);
-            else
-                vres_sph_pair_visc(C, C->alpha_wall, mb, rhoa, rhob, dx, dv, inv_r2eta, fr, acc);
-            if (f->tau) { /* the fluid's stress (a wall carries none): m_b tau_b/rho_b^2 . grad_a W_ab */
-                const double *t = &f->tau[6 * b];
-                acc[0] += mb * (t[0] * fr[0] + t[1] * fr[1] + t[2] * fr[2]);
-                acc[1] += mb * (t[1] * fr[0] + t[3] * fr[1] + t[4] * fr[2]);
-                acc[2] += mb * (t[2] * fr[0] + t[4] * fr[1] + t[5] * fr[2]);
+            /* the pair terms in single precision, as the solver (kernels/sph.h vres_sph_interact) */
+            const float fx[3] = {(float)dx[0], (float)dx[1], (float)dx[2]}, fr2 = (float)r2, r = sqrtf(fr2);
+            const float F = vres_sph_kernel_ff(C, C->kernel, r), fr[3] = {F * fx[0], F * fx[1], F * fx[2]};
+            const float dv[3] = {va[0] - f->vel[3 * b], va[1] - f->vel[3 * b + 1], va[2] - f->vel[3 * b + 2]};
+            const float mb = (float)f->mass[b], rhob = f->rho[b], inv_r2eta = 1.0f / (fr2 + (float)C->eta2);
+            const float prs = vres_sph_pair_prs(C, C->kernel, mb, pa, f->press[b], inv_rhoa, 1.0f / rhob, r, ra);
+            const float dot = fx[0] * dv[0] + fx[1] * dv[1] + fx[2] * dv[2];
+            const float vc = laminar ? vres_sph_pair_laminar(vis, mb, rhoa, rhob,
+                                                             fx[0] * fr[0] + fx[1] * fr[1] + fx[2] * fr[2], inv_r2eta)
+                                     : vres_sph_pair_visc(C, vis, mb, rhoa, rhob, dot, dot * inv_r2eta);
+            for (int k = 0; k < 3; k++)
+                acc[k] += vres_sph_pair_acc(laminar ? VRES_VISC_LAMINAR : VRES_VISC_ARTIFICIAL, prs, vc, fr[k], dv[k]);
+            if (f->tau) { /* the fluid's stress (a wall carries none): m_b tau_b/rho_b^2 . grad_a W_ab, in double */
+                const double *t = &f->tau[6 * b], Fd = vres_sph_kernel_f(C, C->kernel, sqrt(r2));
+                const double fd[3] = {Fd * dx[0], Fd * dx[1], Fd * dx[2]}, mbd = f->mass[b];
+                acc[0] += mbd * (t[0] * fd[0] + t[1] * fd[1] + t[2] * fd[2]);
+                acc[1] += mbd * (t[1] * fd[0] + t[3] * fd[1] + t[4] * fd[2]);
+                acc[2] += mbd * (t[2] * fd[0] + t[4] * fd[1] + t[5] * fd[2]);
             }
             nn++;
         }

@@ -388,35 +388,39 @@ if want scaling; then
     done
 fi
 
-# Table 7 (roofline): the machine's roofs, measured by pipelines/roofline.c (double-precision
-#   FMA peak and a STREAM-style triad's bandwidth, 1 and ROOF_THREADS threads; compiled here
-#   with cc -O2 -mavx2 -mfma -fopenmp, skipped where that fails), and where the interaction
-#   stands under them: for the 2D dam break at dp 0.01 (21k particles) and the 3D one at dp
-#   0.02 (17k), one run of about STEPS steps at ROOF_THREADS threads, its interactions per
-#   second (pairs within 2h) times the flops of one pair, counted from kernels/sph.h's pair
-#   terms for these scenes (fluid-fluid pair, Wendland, artificial viscosity, Fourtakas
-#   diffusion): 3D 86 (distance 8 with the sqrt, kernel 6, grad W 3, relative velocity 3,
-#   1/(r^2+eta^2) 2, continuity 7, 1/rho_b 1, pressure 10, viscosity 19 for approaching pairs,
-#   largest rate 1, diffusion 25 with Fourtakas' series) and 2D 72 (the y terms left out);
-#   the two divisions and the sqrt count one flop each though they take several FMA slots,
-#   and the pairs beyond 2h that the cells offer and the test rejects count nothing, so the
-#   percentage understates the loop's use of the machine. The memory column: the state each
-#   force evaluation must at least read and write, 2 x 218 B per particle (the bytes vres-run
-#   holds per particle, pipelines/reports/memory.txt), two evaluations per Symplectic step,
-#   as GB/s at the measured particle-steps per second, against the triad's bandwidth.
+# Table 7 (roofline): the machine's roofs, measured by pipelines/roofline.c (double- and
+#   single-precision FMA peaks and a STREAM-style triad's bandwidth, 1 and ROOF_THREADS threads;
+#   compiled here with cc -O2 -mavx2 -mfma -fopenmp, skipped where that fails), and where the
+#   interaction stands under them: for the 2D dam break at dp 0.01 (21k particles) and the 3D
+#   one at dp 0.02 (17k), one run of about STEPS steps at ROOF_THREADS threads, its
+#   interactions per second (pairs within 2h) times the flops of one pair, counted from
+#   kernels/sph.h's pair terms for these scenes (fluid-fluid pair, Wendland, artificial
+#   viscosity, Fourtakas diffusion): 3D 78 (distance 8 in double for the support test; then in
+#   single precision: sqrt 1, kernel 6, grad W 3, relative velocity 3, 1/(r^2+eta^2) 2,
+#   continuity 7, 1/rho_b 1, pressure coefficient 4, viscous coefficient with its dot product
+#   12, largest rate 1, the pair's acceleration 7 (prs + Pi, three products, three sums),
+#   diffusion 23 with Fourtakas' series) and 2D 67 (the y terms left out, but for g.x_ab's); the divisions and
+#   the sqrt count one flop each though they take several FMA slots, and the pairs beyond 2h
+#   that the cells offer and the test rejects count nothing, so the percentage understates the
+#   loop's use of the machine. The percentage is of the single-precision peak, the precision of
+#   all but the distance (before 2026-12-05 the pair terms were doubles, 86 and 72 flops, and
+#   the percentage was of the double peak). The memory column: the state each force
+#   evaluation must at least read and write, 2 x 218 B per particle (the bytes vres-run holds
+#   per particle, pipelines/reports/memory.txt), two evaluations per Symplectic step, as GB/s at
+#   the measured particle-steps per second, against the triad's bandwidth.
 ROOF_THREADS=${ROOF_THREADS:-$TH2}
 if want roofline; then
     if ${CC:-cc} -O2 -mavx2 -mfma -fopenmp pipelines/roofline.c -o "$out/roofline" 2>/dev/null; then
-        printf '\n# roofline: the machine (pipelines/roofline.c: best of 5; FMA chains of AVX2 doubles; triad of 3 x 256 MiB)\n'
-        printf 'threads\tpeak_gflops\ttriad_gbs\n'
+        printf '\n# roofline: the machine (pipelines/roofline.c: best of 5; FMA chains of AVX2 doubles and floats; triad of 3 x 256 MiB)\n'
+        printf 'threads\tpeak_gflops\tpeak_sp_gflops\ttriad_gbs\n'
         OMP_NUM_THREADS=$ROOF_THREADS "$out/roofline" "$ROOF_THREADS" | tee "$out/roofs.tsv"
-        peak=$(awk -v t="$ROOF_THREADS" '$1 == t {print $2}' "$out/roofs.tsv")
-        bw=$(awk -v t="$ROOF_THREADS" '$1 == t {print $3}' "$out/roofs.tsv")
+        peak=$(awk -v t="$ROOF_THREADS" '$1 == t {print $3}' "$out/roofs.tsv")
+        bw=$(awk -v t="$ROOF_THREADS" '$1 == t {print $4}' "$out/roofs.tsv")
         printf '\n# roofline: the interaction under those roofs, %s threads, about %s steps, one run each\n' "$ROOF_THREADS" "$STEPS"
-        printf 'case\tparticles\tinteractions_per_s\tflops_per_pair\tgflops\tpct_of_peak\tstate_gbs\tpct_of_triad\n'
+        printf 'case\tparticles\tinteractions_per_s\tflops_per_pair\tgflops\tpct_of_sp_peak\tstate_gbs\tpct_of_triad\n'
         gen dambreak2d-20k "$DB" --dp 0.01
         gen scale3-0.02 "$DB3" --dp 0.02
-        for c in "dambreak2d-20k 72" "scale3-0.02 86"; do
+        for c in "dambreak2d-20k 67" "scale3-0.02 78"; do
             set -- $c
             rd=$out/run-roof-$1
             rm -rf "$rd"

@@ -1,12 +1,12 @@
 /* pipelines/roofline.c - the machine's two roofs for pipelines/bench.sh's roofline table (not
- * part of the tools): the double-precision peak of fused multiply-adds and the memory
- * bandwidth of a STREAM-style triad, each at 1 and N OpenMP threads.
+ * part of the tools): the double- and single-precision peaks of fused multiply-adds and the
+ * memory bandwidth of a STREAM-style triad, each at 1 and N OpenMP threads.
  *
  *   cc -O2 -mavx2 -mfma -fopenmp pipelines/roofline.c -o roofline && ./roofline [THREADS]
  *
- * prints "threads peak_gflops triad_gbs" lines. Peak: each thread runs 10 independent chains
- * of 4-wide AVX2 FMAs (enough to cover the FMA latency on current x86 cores), 2 flops per lane
- * and FMA, best of 5 repetitions. Triad: a[i] = b[i] + s c[i] over 3 arrays of 2^25 doubles
+ * prints "threads peak_gflops peak_sp_gflops triad_gbs" lines. Peak: each thread runs 10
+ * independent chains of AVX2 FMAs (enough to cover the FMA latency on current x86 cores), 4
+ * double or 8 single lanes, 2 flops per lane and FMA, best of 5 repetitions. Triad: a[i] = b[i] + s c[i] over 3 arrays of 2^25 doubles
  * (768 MiB, far beyond any cache), 24 bytes per element counted (the write-allocate read of a
  * not counted, as STREAM does), best of 5. */
 #include <immintrin.h>
@@ -19,7 +19,7 @@
 #define TRIAD_N (1L << 25)   /* elements per triad array */
 #define REPS 5               /* repetitions; the best one counts */
 
-/* GFLOP/s of FMAs on nt threads. */
+/* GFLOP/s of double-precision FMAs on nt threads. */
 static double peak(int nt)
 {
     double best = 0;
@@ -37,6 +37,30 @@ static double peak(int nt)
             sink += out[0] + out[1] + out[2] + out[3];
         }
         double dt = omp_get_wtime() - t0, g = (double)nt * FMA_ITERS * CHAINS * 4 * 2 / dt / 1e9;
+        if (sink == 42.0) printf("#\n"); /* keep the chains alive */
+        if (g > best) best = g;
+    }
+    return best;
+}
+
+/* GFLOP/s of single-precision FMAs on nt threads (8 lanes per instruction). */
+static double peak_sp(int nt)
+{
+    double best = 0;
+    for (int rep = 0; rep < REPS; rep++) {
+        double sink = 0, t0 = omp_get_wtime();
+#pragma omp parallel num_threads(nt) reduction(+ : sink)
+        {
+            __m256 acc[CHAINS], m = _mm256_set1_ps(0.9999f), add = _mm256_set1_ps(1e-4f);
+            for (int k = 0; k < CHAINS; k++) acc[k] = _mm256_set1_ps(1.0f + k);
+            for (long i = 0; i < FMA_ITERS; i++)
+                for (int k = 0; k < CHAINS; k++) acc[k] = _mm256_fmadd_ps(acc[k], m, add);
+            float out[8];
+            for (int k = 1; k < CHAINS; k++) acc[0] = _mm256_add_ps(acc[0], acc[k]);
+            _mm256_storeu_ps(out, acc[0]);
+            for (int k = 0; k < 8; k++) sink += out[k];
+        }
+        double dt = omp_get_wtime() - t0, g = (double)nt * FMA_ITERS * CHAINS * 8 * 2 / dt / 1e9;
         if (sink == 42.0) printf("#\n"); /* keep the chains alive */
         if (g > best) best = g;
     }
@@ -65,7 +89,7 @@ int main(int argc, char **argv)
 #pragma omp parallel for num_threads(nmax) schedule(static) /* first touch by the threads that use them */
     for (long i = 0; i < TRIAD_N; i++) a[i] = 0, b[i] = 1, c[i] = 2;
     for (int nt = 1; nt <= nmax; nt = nt < nmax && 2 * nt > nmax ? nmax : 2 * nt)
-        printf("%d\t%.1f\t%.1f\n", nt, peak(nt), triad(nt, a, b, c));
+        printf("%d\t%.1f\t%.1f\t%.1f\n", nt, peak(nt), peak_sp(nt), triad(nt, a, b, c));
     free(a), free(b), free(c);
     return 0;
 }

@@ -128,41 +128,73 @@ END_TEST
 
 START_TEST(tensile_correction)
 {
+    /* in single precision, as the interaction computes it: f^4 amplifies W's relative rounding
+       (a few 6e-8) four times, so the values below hold to 1e-6 */
     for (int dim = 2; dim <= 3; dim++) {
         double h = 0.03;
         vres_cubic k = vres_cubic_make(dim, h);
         /* f = W(r)/W(h/1.5) is 1 at r = h/1.5 (DualSPHysics' dp'), so the term is R_a + R_b there */
-        ck_assert_double_eq_tol(vres_cubic_tensile(k, h / 1.5, 2.0, 3.0), 5.0, 1e-13);
+        ck_assert_double_eq_tol(vres_cubic_tensilef(k, (float)(h / 1.5), 2.0f, 3.0f), 5.0, 5e-6);
         /* at r = 0: (9/5)^4 (R_a + R_b); beyond 2h: 0 */
-        ck_assert_double_eq_tol(vres_cubic_tensile(k, 0, 1.0, 0.0), pow(1.8, 4), 1e-13);
-        ck_assert(vres_cubic_tensile(k, 2 * h, 1.0, 1.0) == 0);
+        ck_assert_double_eq_tol(vres_cubic_tensilef(k, 0, 1.0f, 0.0f), pow(1.8, 4), 1e-5);
+        ck_assert(vres_cubic_tensilef(k, (float)(2 * h), 1.0f, 1.0f) == 0);
     }
     /* R = 0.01 p/rho^2 for p > 0, 0.2 |p|/rho^2 for p <= 0: always >= 0, so the correction
        pushes particles apart, most where the pressure is negative */
-    ck_assert_double_eq_tol(vres_cubic_tensile_r(2000, 1e-3), 0.01 * 2000 * 1e-6, 1e-18);
-    ck_assert_double_eq_tol(vres_cubic_tensile_r(-500, 1e-3), 0.2 * 500 * 1e-6, 1e-18);
-    ck_assert(vres_cubic_tensile_r(0, 1e-3) == 0);
+    ck_assert_double_eq_tol(vres_cubic_tensile_rf(2000, 1e-3f), 0.01 * 2000 * 1e-6, 1e-11);
+    ck_assert_double_eq_tol(vres_cubic_tensile_rf(-500, 1e-3f), 0.2 * 500 * 1e-6, 1e-11);
+    ck_assert(vres_cubic_tensile_rf(0, 1e-3f) == 0);
     /* a pair with the correction conserves momentum: m_a acc_a = -m_b acc_b */
     vres_sph_consts C = vres_sph_consts_make(2, 0.014, 20);
-    double xa[3] = {0, 0, 0}, xb[3] = {0.009, 0, -0.004}, dx[3], r = 0;
-    for (int a = 0; a < 3; a++) dx[a] = xa[a] - xb[a], r += dx[a] * dx[a];
-    r = sqrt(r);
-    double ma = 0.1, mb = 0.12, pa = -300, pb = 800, ra = 1010, rb = 995;
-    double F = vres_cubic_f(C.kc, r), fr[3] = {F * dx[0], F * dx[1], F * dx[2]}, frr[3] = {-fr[0], -fr[1], -fr[2]};
-    double Ra = vres_cubic_tensile_r(pa, 1 / ra), Rb = vres_cubic_tensile_r(pb, 1 / rb);
-    double tab = vres_cubic_tensile(C.kc, r, Ra, Rb), tba = vres_cubic_tensile(C.kc, r, Rb, Ra);
+    double xa[3] = {0, 0, 0}, xb[3] = {0.009, 0, -0.004};
+    float dx[3], r = 0;
+    for (int a = 0; a < 3; a++) dx[a] = (float)(xa[a] - xb[a]), r += dx[a] * dx[a];
+    r = sqrtf(r);
+    float ma = 0.1f, mb = 0.12f, pa = -300, pb = 800, ra = 1010, rb = 995;
+    float F = vres_cubic_ff(C.kc, r), fr[3] = {F * dx[0], F * dx[1], F * dx[2]}, frr[3] = {-fr[0], -fr[1], -fr[2]};
+    float Ra = vres_cubic_tensile_rf(pa, 1 / ra), Rb = vres_cubic_tensile_rf(pb, 1 / rb);
+    float tab = vres_cubic_tensilef(C.kc, r, Ra, Rb), tba = vres_cubic_tensilef(C.kc, r, Rb, Ra);
     ck_assert(tab == tba && tab > 0);
-    double acca[3] = {0, 0, 0}, accb[3] = {0, 0, 0}, acc0[3] = {0, 0, 0};
-    vres_sph_pair_pressure_tensile(mb, pa, pb, 1 / ra, 1 / rb, tab, fr, acca);
-    vres_sph_pair_pressure_tensile(ma, pb, pa, 1 / rb, 1 / ra, tba, frr, accb);
-    vres_sph_pair_pressure(mb, pa, pb, 1 / ra, 1 / rb, fr, acc0);
+    float prs_a = vres_sph_pair_prs(&C, VRES_KERNEL_CUBIC, mb, pa, pb, 1 / ra, 1 / rb, r, Ra);
+    float prs_b = vres_sph_pair_prs(&C, VRES_KERNEL_CUBIC, ma, pb, pa, 1 / rb, 1 / ra, r, Rb);
+    float prs_0 = vres_sph_pair_prs(&C, VRES_KERNEL_WENDLAND, mb, pa, pb, 1 / ra, 1 / rb, r, Ra); /* no correction */
+    double acca[3], accb[3], acc0[3];
+    for (int a = 0; a < 3; a++) {
+        acca[a] = vres_sph_pair_acc(VRES_VISC_ARTIFICIAL, prs_a, 0, fr[a], 0);
+        accb[a] = vres_sph_pair_acc(VRES_VISC_ARTIFICIAL, prs_b, 0, frr[a], 0);
+        acc0[a] = vres_sph_pair_acc(VRES_VISC_ARTIFICIAL, prs_0, 0, fr[a], 0);
+    }
     for (int a = 0; a < 3; a++)
-        ck_assert_double_eq_tol(ma * acca[a], -mb * accb[a], 1e-12 * fabs(ma * acca[a]) + 1e-300);
+        ck_assert_double_eq_tol(ma * acca[a], -mb * accb[a], 1e-6 * fabs(ma * acca[a]) + 1e-300);
     /* and it is the plain pressure term plus -m_b tens grad W: a repulsion (F < 0, so -F x_ab points
-       along x_ab = x_a - x_b, away from b) */
+       along x_ab = x_a - x_b, away from b); the difference of two single-precision terms, so to
+       1e-6 of the larger */
     for (int a = 0; a < 3; a++)
-        ck_assert_double_eq_tol(acca[a] - acc0[a], -mb * tab * fr[a], 1e-9 * fabs(mb * tab * fr[a]) + 1e-300);
+        ck_assert_double_eq_tol(acca[a] - acc0[a], -mb * tab * fr[a], 1e-6 * (fabs(acca[a]) + fabs(acc0[a])) + 1e-300);
     ck_assert((acca[0] - acc0[0]) * dx[0] + (acca[1] - acc0[1]) * dx[1] + (acca[2] - acc0[2]) * dx[2] > 0);
+}
+END_TEST
+
+/* The single-precision F and W the pair terms use (vres_cubic_ff, vres_cubic_wf,
+ * vres_wendland_ff) against the double ones, across the support and past it: within a few
+ * roundings of 2^-24 of the function's largest value (F(0), W(0)), 1e-6 of it. */
+START_TEST(single_precision_matches_double)
+{
+    for (int dim = 2; dim <= 3; dim++) {
+        const double h = 0.0173;
+        vres_cubic kc = vres_cubic_make(dim, h);
+        vres_wendland kw = vres_wendland_make(dim, h);
+        const double fc0 = fabs(vres_cubic_f(kc, 0)), wc0 = vres_cubic_w(kc, 0), fw0 = fabs(vres_wendland_f(kw, 0));
+        int n = 0;
+        for (double r = 0; r <= 2.2 * h; r += h / 97, n++) {
+            const float rf = (float)r;
+            ck_assert_double_eq_tol(vres_cubic_ff(kc, rf), vres_cubic_f(kc, rf), 1e-6 * fc0);
+            ck_assert_double_eq_tol(vres_cubic_wf(kc, rf), vres_cubic_w(kc, rf), 1e-6 * wc0);
+            ck_assert_double_eq_tol(vres_wendland_ff(kw, rf), vres_wendland_f(kw, rf), 1e-6 * fw0);
+        }
+        ck_assert_int_gt(n, 200);
+        ck_assert(vres_cubic_ff(kc, (float)(2.01 * h)) == 0 && vres_wendland_ff(kw, (float)(2.01 * h)) == 0);
+    }
 }
 END_TEST
 
@@ -175,6 +207,7 @@ int main(void)
     tcase_add_test(tc, derivatives_match_finite_differences);
     tcase_add_test(tc, gradient_in_space);
     tcase_add_test(tc, tensile_correction);
+    tcase_add_test(tc, single_precision_matches_double);
     suite_add_tcase(s, tc);
     return vres_check_run(s);
 }

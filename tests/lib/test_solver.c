@@ -47,28 +47,41 @@ static vres_sph_consts consts(void)
     return C;
 }
 
-/* The pair geometry of a at xa and b at xb: x_ab, r^2, F and grad_a W_ab. */
-static void pair(const vres_sph_consts *C, const double xa[3], const double xb[3], double dx[3], double *r2, double *F,
-                 double fr[3])
+/* The pair geometry of a at xa and b at xb as the interaction computes it (x_ab and r^2 in
+ * double, then rounded: the pair terms are single precision, vres_sph_pair_prs): x_ab, r^2, F and
+ * grad_a W_ab. */
+static void pair(const vres_sph_consts *C, const double xa[3], const double xb[3], float dx[3], float *r2, float *F,
+                 float fr[3])
 {
-    *r2 = 0;
-    for (int k = 0; k < 3; k++) dx[k] = xa[k] - xb[k], *r2 += dx[k] * dx[k];
-    *F = vres_wendland_f(C->k, sqrt(*r2));
+    double d2 = 0, d[3];
+    for (int k = 0; k < 3; k++) d[k] = xa[k] - xb[k], d2 += d[k] * d[k];
+    for (int k = 0; k < 3; k++) dx[k] = (float)d[k];
+    *r2 = (float)d2;
+    *F = vres_wendland_ff(C->k, sqrtf(*r2));
     for (int k = 0; k < 3; k++) fr[k] = *F * dx[k];
 }
+
+/* The balances below hold up to the rounding of single precision: each side is a product of
+ * about six roundings of relative 2^-24 (6e-8) in a different order, so they agree to 1e-6. */
+#define PAIR_TOL 1e-6
 
 START_TEST(pressure_pair_conserves_momentum)
 {
     vres_sph_consts C = consts();
-    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.113, 0, 0.191}, dx[3], dxr[3], r2, F, fr[3], frr[3];
+    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.113, 0, 0.191};
+    float dx[3], dxr[3], r2, F, fr[3], frr[3];
     pair(&C, xa, xb, dx, &r2, &F, fr);
     pair(&C, xb, xa, dxr, &r2, &F, frr);
-    double ma = 0.1, mb = 0.13, pa = 1234, pb = 2345, ra = 1001, rb = 1003.5;
-    double acca[3] = {0, 0, 0}, accb[3] = {0, 0, 0};
-    vres_sph_pair_pressure(mb, pa, pb, 1 / ra, 1 / rb, fr, acca);
-    vres_sph_pair_pressure(ma, pb, pa, 1 / rb, 1 / ra, frr, accb);
+    float ma = 0.1f, mb = 0.13f, pa = 1234, pb = 2345, ra = 1001, rb = 1003.5f;
+    float prs_a = vres_sph_pair_prs(&C, VRES_KERNEL_WENDLAND, mb, pa, pb, 1 / ra, 1 / rb, 0, 0);
+    float prs_b = vres_sph_pair_prs(&C, VRES_KERNEL_WENDLAND, ma, pb, pa, 1 / rb, 1 / ra, 0, 0);
+    double acca[3], accb[3];
+    for (int k = 0; k < 3; k++) {
+        acca[k] = vres_sph_pair_acc(VRES_VISC_ARTIFICIAL, prs_a, 0, fr[k], 0);
+        accb[k] = vres_sph_pair_acc(VRES_VISC_ARTIFICIAL, prs_b, 0, frr[k], 0);
+    }
     ck_assert(fabs(acca[0]) > 1); /* a real force, so the balance below means something */
-    for (int k = 0; k < 3; k++) ck_assert_double_eq_tol(ma * acca[k], -mb * accb[k], 1e-12 * fabs(ma * acca[0]));
+    for (int k = 0; k < 3; k++) ck_assert_double_eq_tol(ma * acca[k], -mb * accb[k], PAIR_TOL * fabs(ma * acca[0]));
     /* positive pressures push a away from b: acc along x_ab */
     ck_assert(acca[0] * dx[0] + acca[2] * dx[2] > 0);
 }
@@ -77,43 +90,54 @@ END_TEST
 START_TEST(viscosity_only_between_approaching_particles)
 {
     vres_sph_consts C = consts();
-    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.11, 0, 0.205}, dx[3], dxr[3], r2, F, fr[3], frr[3];
+    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.11, 0, 0.205};
+    float dx[3], dxr[3], r2, F, fr[3], frr[3];
     pair(&C, xa, xb, dx, &r2, &F, fr);
     pair(&C, xb, xa, dxr, &r2, &F, frr);
-    double ma = 0.1, mb = 0.1, ra = 1000, rb = 1002;
+    const float ma = 0.1f, mb = 0.1f, ra = 1000, rb = 1002, alpha = (float)C.alpha;
+    const float inv_r2eta = 1 / (r2 + (float)C.eta2);
     /* separating: v_ab along x_ab */
-    double sep[3] = {0.3 * dx[0] / sqrt(r2), 0, 0.3 * dx[2] / sqrt(r2)}, acc[3] = {0, 0, 0};
-    double rate = vres_sph_pair_visc(&C, C.alpha, mb, ra, rb, dx, sep, 1 / (r2 + C.eta2), fr, acc);
-    ck_assert(acc[0] == 0 && acc[1] == 0 && acc[2] == 0);
-    ck_assert(rate > 0); /* the time-step bound still sees the pair */
+    float sep[3] = {0.3f * dx[0] / sqrtf(r2), 0, 0.3f * dx[2] / sqrtf(r2)};
+    float dot = dx[0] * sep[0] + dx[2] * sep[2];
+    ck_assert(vres_sph_pair_visc(&C, alpha, mb, ra, rb, dot, dot * inv_r2eta) == 0);
+    ck_assert(dot * inv_r2eta > 0); /* the time-step bound still sees the pair */
     /* approaching: the force brakes the relative motion and is equal and opposite */
-    double app[3] = {-sep[0], 0, -sep[2]}, appr[3] = {sep[0], 0, sep[2]}, acca[3] = {0, 0, 0}, accb[3] = {0, 0, 0};
-    vres_sph_pair_visc(&C, C.alpha, mb, ra, rb, dx, app, 1 / (r2 + C.eta2), fr, acca);
-    vres_sph_pair_visc(&C, C.alpha, ma, rb, ra, dxr, appr, 1 / (r2 + C.eta2), frr, accb);
+    float app[3] = {-sep[0], 0, -sep[2]}, appr[3] = {sep[0], 0, sep[2]};
+    float dota = dx[0] * app[0] + dx[2] * app[2], dotb = dxr[0] * appr[0] + dxr[2] * appr[2];
+    float vca = vres_sph_pair_visc(&C, alpha, mb, ra, rb, dota, dota * inv_r2eta);
+    float vcb = vres_sph_pair_visc(&C, alpha, ma, rb, ra, dotb, dotb * inv_r2eta);
+    double acca[3], accb[3];
+    for (int k = 0; k < 3; k++) {
+        acca[k] = vres_sph_pair_acc(VRES_VISC_ARTIFICIAL, 0, vca, fr[k], app[k]);
+        accb[k] = vres_sph_pair_acc(VRES_VISC_ARTIFICIAL, 0, vcb, frr[k], appr[k]);
+    }
     ck_assert(acca[0] * app[0] + acca[2] * app[2] < 0);
-    for (int k = 0; k < 3; k++) ck_assert_double_eq_tol(ma * acca[k], -mb * accb[k], 1e-12 * fabs(acca[0]));
+    for (int k = 0; k < 3; k++) ck_assert_double_eq_tol(ma * acca[k], -mb * accb[k], PAIR_TOL * fabs(acca[0]));
 }
 END_TEST
 
 START_TEST(diffusion_zero_for_uniform_and_hydrostatic_density)
 {
     vres_sph_consts C = consts();
-    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.11, 0, 0.19}, dx[3], r2, F, fr[3];
+    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.11, 0, 0.19};
+    float dx[3], r2, F, fr[3];
     pair(&C, xa, xb, dx, &r2, &F, fr);
+    const float ie = 1 / (r2 + (float)C.eta2);
     /* uniform density: no diffusion, Molteni and Fourtakas (no gravity) alike */
-    ck_assert(vres_sph_pair_ddt(&C, 0, 0.1, 1002.5, 1002.5, 1.0 / 1002.5, dx, r2, 1 / (r2 + C.eta2), F) == 0);
+    ck_assert(vres_sph_pair_ddt(&C, 0, 0.1f, 1002.5f, 1002.5f, 1 / 1002.5f, dx[0], dx[1], dx[2], r2, ie, F) == 0);
     /* denser a loses density, lighter a gains */
-    ck_assert(vres_sph_pair_ddt(&C, 0, 0.1, 1003, 1001, 1.0 / 1001, dx, r2, 1 / (r2 + C.eta2), F) < 0);
-    ck_assert(vres_sph_pair_ddt(&C, 0, 0.1, 1001, 1003, 1.0 / 1003, dx, r2, 1 / (r2 + C.eta2), F) > 0);
+    ck_assert(vres_sph_pair_ddt(&C, 0, 0.1f, 1003, 1001, 1 / 1001.0f, dx[0], dx[1], dx[2], r2, ie, F) < 0);
+    ck_assert(vres_sph_pair_ddt(&C, 0, 0.1f, 1001, 1003, 1 / 1003.0f, dx[0], dx[1], dx[2], r2, ie, F) > 0);
     /* Fourtakas: densities of a still column (Tait EOS at p = rho0 |g| depth, surface at 0.5 m)
        give no diffusion up to the error of its rho^H_ab, which linearises the EOS about p = 0:
        the slope of rho(p) at depth differs from that by a relative (1 - 1/gamma) p/B, so the
-       residual is below 2 p_a/B of Molteni's term, which does diffuse the same pair */
+       residual is below 2 p_a/B of Molteni's term, which does diffuse the same pair (the
+       densities' rounding to float, 6e-5 kg/m^3, is 4e-4 of their difference here) */
     double B = C.rho0 / C.rho0_over_B, gamma = 1 / C.inv_gamma;
-    double ra = vres_tait_density(C.rho0 * 9.81 * (0.5 - xa[2]), C.rho0, B, gamma);
-    double rb = vres_tait_density(C.rho0 * 9.81 * (0.5 - xb[2]), C.rho0, B, gamma);
-    double molteni = vres_sph_pair_ddt(&C, 0, 0.1, ra, rb, 1 / rb, dx, r2, 1 / (r2 + C.eta2), F);
-    double fourtakas = vres_sph_pair_ddt(&C, 1, 0.1, ra, rb, 1 / rb, dx, r2, 1 / (r2 + C.eta2), F);
+    float ra = (float)vres_tait_density(C.rho0 * 9.81 * (0.5 - xa[2]), C.rho0, B, gamma);
+    float rb = (float)vres_tait_density(C.rho0 * 9.81 * (0.5 - xb[2]), C.rho0, B, gamma);
+    double molteni = vres_sph_pair_ddt(&C, 0, 0.1f, ra, rb, 1 / rb, dx[0], dx[1], dx[2], r2, ie, F);
+    double fourtakas = vres_sph_pair_ddt(&C, 1, 0.1f, ra, rb, 1 / rb, dx[0], dx[1], dx[2], r2, ie, F);
     ck_assert(fabs(molteni) > 0);
     double pa_over_B = C.rho0 * 9.81 * (0.5 - xa[2]) / B;
     ck_assert_msg(fabs(fourtakas) < 2 * pa_over_B * fabs(molteni), "Fourtakas %g vs Molteni %g", fourtakas, molteni);
@@ -123,16 +147,22 @@ END_TEST
 START_TEST(laminar_pair_conserves_momentum_and_brakes)
 {
     vres_sph_consts C = consts();
-    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.108, 0, 0.206}, dx[3], dxr[3], r2, F, fr[3], frr[3];
+    double xa[3] = {0.1, 0, 0.2}, xb[3] = {0.108, 0, 0.206};
+    float dx[3], dxr[3], r2, F, fr[3], frr[3];
     pair(&C, xa, xb, dx, &r2, &F, fr);
     pair(&C, xb, xa, dxr, &r2, &F, frr);
-    double ma = 0.1, mb = 0.13, ra = 1001, rb = 998;
+    const float ma = 0.1f, mb = 0.13f, ra = 1001, rb = 998, nu = (float)C.nu, ie = 1 / (r2 + (float)C.eta2);
     /* a shearing pair (v_ab normal to x_ab), which artificial viscosity would ignore */
-    double dv[3] = {-dx[2], 0, dx[0]}, dvr[3] = {dx[2], 0, -dx[0]}, acca[3] = {0, 0, 0}, accb[3] = {0, 0, 0};
-    vres_sph_pair_laminar(C.nu, mb, ra, rb, dx, dv, 1 / (r2 + C.eta2), fr, acca);
-    vres_sph_pair_laminar(C.nu, ma, rb, ra, dxr, dvr, 1 / (r2 + C.eta2), frr, accb);
+    float dv[3] = {-dx[2], 0, dx[0]}, dvr[3] = {dx[2], 0, -dx[0]};
+    float vta = vres_sph_pair_laminar(nu, mb, ra, rb, dx[0] * fr[0] + dx[1] * fr[1] + dx[2] * fr[2], ie);
+    float vtb = vres_sph_pair_laminar(nu, ma, rb, ra, dxr[0] * frr[0] + dxr[1] * frr[1] + dxr[2] * frr[2], ie);
+    double acca[3], accb[3];
+    for (int k = 0; k < 3; k++) {
+        acca[k] = vres_sph_pair_acc(VRES_VISC_LAMINAR, 0, vta, fr[k], dv[k]);
+        accb[k] = vres_sph_pair_acc(VRES_VISC_LAMINAR, 0, vtb, frr[k], dvr[k]);
+    }
     ck_assert(acca[0] * dv[0] + acca[2] * dv[2] < 0);
-    for (int k = 0; k < 3; k++) ck_assert_double_eq_tol(ma * acca[k], -mb * accb[k], 1e-12 * fabs(acca[0]));
+    for (int k = 0; k < 3; k++) ck_assert_double_eq_tol(ma * acca[k], -mb * accb[k], PAIR_TOL * fabs(acca[0]));
 }
 END_TEST
 
