@@ -740,8 +740,8 @@ typedef struct vres_sph_pairs_d {
 } vres_sph_pairs_d;
 
 /* Pair k of Q (and of D with dbl) from candidate i of pass L of particle a at (xa, ya, za) (m),
- * in dimension dim; walls, float_a and shift as in vres_sph_interact_v. Returns 1 when b is a wall particle (it does not
- * act as fluid); sets *noshift when it cancels a's shifting (shift). */
+ * in dimension dim; walls, float_a and shift as in vres_sph_interact_v. Returns 1 when b is a
+ * wall particle (it does not act as fluid); sets *noshift when it cancels a's shifting. */
 VRES_HD static inline VRES_FORCE_INLINE int vres_sph_gather(vres_sph_pairs *Q, vres_sph_pairs_d *D, int k,
                                                             const vres_sph_cands *L, int i,
                                                             const vres_sph_stencil *St, const vres_sph_arrays *P,
@@ -960,9 +960,9 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres
  *   4. computes every pair's terms over those arrays into arrays T, without a branch (vector
  *      instructions again: selects where vres_sph_interact branches);
  *   5. adds the terms in pair order.
- * Step 4 does each pair's arithmetic operation for operation as vres_sph_interact and the pair
- * functions (x, y, z in that order), so vector and scalar code give the same bits, and step 5
- * keeps the order of the sums: the results are vres_sph_interact's to the bit
+ * Step 4 calls the pair functions vres_sph_interact calls, on the same single-precision inputs
+ * (each dot product x, y, z in that order; the shifting and SPS terms in double, as there), so
+ * vector and scalar code give the same bits, and step 5 keeps the order of the sums: the results are vres_sph_interact's to the bit
  * (tests/lib/test_solver.c checks it in 2D and 3D). */
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const vres_sph_stencil *St,
                                                                const vres_sph_arrays *P, const vres_sph_consts *C,
