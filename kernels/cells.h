@@ -59,6 +59,10 @@ typedef struct vres_cells {
     size_t cap;         /* particles perm, key and scratch have room for */
     size_t *key;        /* [cap] work array of the build: each particle's cell (ncells when outside) */
     void *scratch;      /* [cap * 24 bytes] work buffer of vres_cells_gather */
+    void *spare;        /* the buffer vres_cells_permute gathers into and swaps in (a permuted array's old block) */
+    size_t spare_bytes; /* bytes spare has room for */
+    size_t *hist;       /* [hist_cap] the build's counts per thread and cell (a parallel counting sort) */
+    size_t hist_cap;    /* entries hist has room for */
 } vres_cells;
 
 /* One neighbouring cell: a range of sorted slots and the periodic shift of its particles. */
@@ -69,17 +73,29 @@ typedef struct vres_cell_range {
                            particle: 0, or -/+ the period on axes that wrapped (m) */
 } vres_cell_range;
 
+/* 1 when position x (m) lies in the box of g (each axis within [lo, hi], or [lo, hi) where it
+ * wraps; y ignored in 2D), 0 when outside or with a NaN coordinate: vres_cells_locate's test,
+ * without the cell. */
+VRES_HD static inline int vres_cells_inside(const vres_cells *g, const double x[3])
+{
+    for (int a = 0; a < 3; a++) {
+        if (a == 1 && g->dim == 2) continue;
+        const double u = x[a];
+        /* written so that NaN fails the test */
+        if (!(u >= g->lo[a] && (g->periodic[a] ? u < g->hi[a] : u <= g->hi[a]))) return 0;
+    }
+    return 1;
+}
+
 /* Cell coordinates ijk of position x (m). Returns 1, or 0 when x lies outside the box (then
  * ijk is unspecified). The build and the neighbour search use this same test. */
 VRES_HD static inline int vres_cells_locate(const vres_cells *g, const double x[3], int ijk[3])
 {
+    if (!vres_cells_inside(g, x)) return 0;
     ijk[1] = 0;
     for (int a = 0; a < 3; a++) {
         if (a == 1 && g->dim == 2) continue;
-        double u = x[a];
-        /* written so that NaN fails the test */
-        if (!(u >= g->lo[a] && (g->periodic[a] ? u < g->hi[a] : u <= g->hi[a]))) return 0;
-        int i = (int)((u - g->lo[a]) / g->cell[a]);
+        int i = (int)((x[a] - g->lo[a]) / g->cell[a]);
         ijk[a] = i < g->nc[a] ? i : g->nc[a] - 1; /* u == hi, or rounding just below it */
     }
     return 1;
@@ -115,8 +131,7 @@ VRES_PARTICLE_LOOP(vres_cells_wrap_loop, vres_cells_wrap_one, (const vres_cells 
 /* mark[i] = 1 when particle i lies outside the box of g (it left the domain), else 0. */
 VRES_HD static inline void vres_cells_mark_out_one(size_t i, const vres_cells *g, const double *pos, uint8_t *mark)
 {
-    int c[3];
-    mark[i] = !vres_cells_locate(g, pos + 3 * i, c);
+    mark[i] = !vres_cells_inside(g, pos + 3 * i);
 }
 
 /* vres_cells_mark_out_cpu / _cuda (n, g, pos, mark). */

@@ -30,8 +30,7 @@ VRES_HD static inline int vres_check_one(size_t i, const vres_cells *g, const do
     for (int k = 0; k < 3; k++) good = good && isfinite(vel[3 * i + k]);
     if (good && check_rho && vres_type_is_fluid(type[i])) good = rho[i] >= rmin && rho[i] <= rmax;
     if (!good) return VRES_CHECK_FATAL;
-    int ijk[3];
-    return vres_cells_locate(g, p, ijk) ? VRES_CHECK_OK : VRES_CHECK_OUT;
+    return vres_cells_inside(g, p) ? VRES_CHECK_OK : VRES_CHECK_OUT;
 }
 
 #endif

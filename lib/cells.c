@@ -4,6 +4,7 @@
 #include "log.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -132,6 +133,64 @@ static void sort_cell_by_x(size_t *perm, size_t b, size_t e, const double *pos)
     }
 }
 
+/* The counting sort of the n keys of g into perm and begin (begin[c] the first slot of cell c,
+ * c <= ncells, the last the particles outside; begin[ncells + 1] = n), stable: the order within
+ * a cell is the input order, so sums over neighbours are reproducible. With several threads each
+ * counts and places a contiguous part of the particles, its slots in each cell after those of
+ * the parts before it: the same permutation as one thread's. Cells far outnumbering the
+ * particles (a sparse box) are counted by one thread, which needs no count per thread. */
+static void cells_count_sort(vres_cells *g, size_t n)
+{
+    const size_t nc = g->ncells, *key = g->key;
+    size_t *begin = g->begin, *perm = g->perm;
+    const int nt = omp_get_max_threads();
+    if (nt < 2 || n < 4096 || nc + 1 > 4 * n) {
+        memset(begin, 0, (nc + 2) * sizeof *begin);
+        for (size_t i = 0; i < n; i++) begin[key[i]]++;
+        size_t sum = 0;
+        for (size_t c = 0; c <= nc; c++) { /* counts -> first slot of each cell */
+            size_t k = begin[c];
+            begin[c] = sum;
+            sum += k;
+        }
+        for (size_t i = 0; i < n; i++) perm[begin[key[i]]++] = i;
+        /* begin[c] now is the end of cell c: shift back by one cell */
+        memmove(begin + 1, begin, (nc + 1) * sizeof *begin);
+        begin[0] = 0;
+        return;
+    }
+    const size_t nk = nc + 1; /* the keys: the cells and "outside" */
+    if (g->hist_cap < (size_t)nt * nk) {
+        free(g->hist);
+        g->hist_cap = (size_t)nt * nk;
+        g->hist = vres_xmalloc(g->hist_cap * sizeof *g->hist);
+    }
+    size_t *hist = g->hist;
+#pragma omp parallel num_threads(nt)
+    {
+        const int t = omp_get_thread_num(), T = omp_get_num_threads();
+        const size_t i0 = n * (size_t)t / (size_t)T, i1 = n * (size_t)(t + 1) / (size_t)T;
+        size_t *h = hist + (size_t)t * nk; /* this part's count, then its next slot, per cell */
+        memset(h, 0, nk * sizeof *h);
+        for (size_t i = i0; i < i1; i++) h[key[i]]++;
+#pragma omp barrier
+#pragma omp single
+        {
+            size_t sum = 0;
+            for (size_t c = 0; c < nk; c++) {
+                begin[c] = sum;
+                for (int u = 0; u < T; u++) {
+                    const size_t k = hist[(size_t)u * nk + c];
+                    hist[(size_t)u * nk + c] = sum;
+                    sum += k;
+                }
+            }
+            begin[nk] = sum;
+        }
+        for (size_t i = i0; i < i1; i++) perm[h[key[i]]++] = i;
+    }
+}
+
 size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
 {
     if (n > g->cap) {
@@ -147,21 +206,7 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
     /* each particle's cell: the only per-particle arithmetic, done in parallel */
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) key[i] = vres_cells_key(g, pos + 3 * i);
-
-    /* counting sort, serial so that the order within a cell is the input order (reproducible
-       sums); it is a few memory passes, cheap next to one interaction step */
-    memset(begin, 0, (nc + 2) * sizeof *begin);
-    for (size_t i = 0; i < n; i++) begin[key[i]]++;
-    size_t sum = 0;
-    for (size_t c = 0; c <= nc; c++) { /* counts -> first slot of each cell */
-        size_t k = begin[c];
-        begin[c] = sum;
-        sum += k;
-    }
-    for (size_t i = 0; i < n; i++) g->perm[begin[key[i]]++] = i;
-    /* begin[c] now is the end of cell c: shift back by one cell */
-    memmove(begin + 1, begin, (nc + 1) * sizeof *begin);
-    begin[0] = 0;
+    cells_count_sort(g, n);
 
     /* each cell's particles in ascending x, so that a row of cells along x is sorted by x and an
        interaction looks at the part of a row within its reach only (kernels/sph.h's
@@ -190,38 +235,77 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
             for (size_t j = 0; j < (w); j++) d_[k * (w) + j] = s_[(perm)[k] * (w) + j]; \
     } while (0)
 
-void vres_cells_gather(vres_cells *g, void *array, size_t elem_size)
+/* dst[s] = src[perm[s]] for the n = g->n elements of elem_size bytes (dst and src apart). 0, or
+ * -1 after printing why (an element size it cannot move). */
+static int cells_gather_into(const vres_cells *g, void *dst, const void *src, size_t elem_size)
 {
-    if (!array || !g->n || g->in_order) return;
     if (elem_size == 0 || elem_size > VRES_CELLS_ELEM_MAX) {
         vres_error("cells: cannot gather elements of %zu bytes (at most %d)", elem_size, VRES_CELLS_ELEM_MAX);
-        return;
+        return -1;
     }
     /* move the widest word that divides the element: arrays come from malloc, so aligned; the
        field table's sizes with a constant word count, so the inner loop unrolls */
     switch (elem_size) {
-    case 24: VRES_GATHER(uint64_t, g->scratch, array, g->perm, g->n, 3); break;
-    case 12: VRES_GATHER(uint32_t, g->scratch, array, g->perm, g->n, 3); break;
-    case 8: VRES_GATHER(uint64_t, g->scratch, array, g->perm, g->n, 1); break;
-    case 4: VRES_GATHER(uint32_t, g->scratch, array, g->perm, g->n, 1); break;
-    case 1: VRES_GATHER(uint8_t, g->scratch, array, g->perm, g->n, 1); break;
+    case 24: VRES_GATHER(uint64_t, dst, src, g->perm, g->n, 3); break;
+    case 12: VRES_GATHER(uint32_t, dst, src, g->perm, g->n, 3); break;
+    case 8: VRES_GATHER(uint64_t, dst, src, g->perm, g->n, 1); break;
+    case 4: VRES_GATHER(uint32_t, dst, src, g->perm, g->n, 1); break;
+    case 1: VRES_GATHER(uint8_t, dst, src, g->perm, g->n, 1); break;
     default:
-        if (elem_size % 8 == 0) VRES_GATHER(uint64_t, g->scratch, array, g->perm, g->n, elem_size / 8);
-        else if (elem_size % 4 == 0) VRES_GATHER(uint32_t, g->scratch, array, g->perm, g->n, elem_size / 4);
-        else VRES_GATHER(uint8_t, g->scratch, array, g->perm, g->n, elem_size);
+        if (elem_size % 8 == 0) VRES_GATHER(uint64_t, dst, src, g->perm, g->n, elem_size / 8);
+        else if (elem_size % 4 == 0) VRES_GATHER(uint32_t, dst, src, g->perm, g->n, elem_size / 4);
+        else VRES_GATHER(uint8_t, dst, src, g->perm, g->n, elem_size);
     }
-    memcpy(array, g->scratch, g->n * elem_size);
+    return 0;
 }
 
-int vres_cells_reorder(vres_cells *g, vres_domain *d)
+void vres_cells_gather(vres_cells *g, void *array, size_t elem_size)
+{
+    if (!array || !g->n || g->in_order) return;
+    if (cells_gather_into(g, g->scratch, array, elem_size) == 0) memcpy(array, g->scratch, g->n * elem_size);
+}
+
+void vres_cells_permute(vres_cells *g, void **slot, size_t elem_size, size_t cap)
+{
+    if (!*slot || !g->n || g->in_order) return;
+    if (cap < g->n) { /* not room for the count: the caller's block is not one to swap */
+        vres_cells_gather(g, *slot, elem_size);
+        return;
+    }
+    const size_t need = cap * elem_size;
+    if (g->spare_bytes < need) { /* the last block swapped out is too small: its content is not needed */
+        free(g->spare);
+        g->spare = vres_xmalloc(need);
+        g->spare_bytes = need;
+    }
+    if (cells_gather_into(g, g->spare, *slot, elem_size) != 0) return;
+    void *old = *slot;
+    *slot = g->spare; /* the gathered copy, with room for cap elements */
+    g->spare = old;   /* the caller's old block, which had room for cap */
+    g->spare_bytes = need;
+}
+
+/* vres_cells_reorder, in place or (swap 1) by vres_cells_permute with d's room d->cap. */
+static int cells_reorder(vres_cells *g, vres_domain *d, int swap)
 {
     if (d->n != g->n) {
         vres_error("cells: domain has %zu particles but the cells were built for %zu", d->n, g->n);
         return -1;
     }
     for (int k = 0; k < VRES_NFIELDS; k++)
-        vres_cells_gather(g, vres_field_array(d, &vres_fields[k]), vres_fields[k].elem);
+        if (swap) vres_cells_permute(g, vres_field_slot(d, &vres_fields[k]), vres_fields[k].elem, d->cap);
+        else vres_cells_gather(g, vres_field_array(d, &vres_fields[k]), vres_fields[k].elem);
     return 0;
+}
+
+int vres_cells_reorder(vres_cells *g, vres_domain *d)
+{
+    return cells_reorder(g, d, 0);
+}
+
+int vres_cells_reorder_swap(vres_cells *g, vres_domain *d)
+{
+    return cells_reorder(g, d, 1);
 }
 
 void vres_cells_wrap(const vres_cells *g, double *pos, size_t n)
@@ -235,6 +319,8 @@ void vres_cells_free(vres_cells *g)
     free(g->perm);
     free(g->key);
     free(g->scratch);
+    free(g->spare);
+    free(g->hist);
     memset(g, 0, sizeof *g);
     g->first_out = (size_t)-1;
 }

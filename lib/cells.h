@@ -46,10 +46,23 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n);
  * element s becomes the old element perm[s]. For per-particle arrays the caller owns. */
 void vres_cells_gather(vres_cells *g, void *array, size_t elem_size);
 
+/* vres_cells_gather without the copy back: the array *slot (n = g->n elements of elem_size bytes,
+ * a block from malloc with room for cap elements) is gathered into the cells' spare block, which
+ * takes its place in *slot, and the old block becomes the spare. For arrays whose owner keeps no
+ * other pointer to them across a sort (the solver's, which it reads through their slots); half the
+ * memory traffic of a gather and its copy. With cap < n (a block of unknown room) it gathers in
+ * place instead. */
+void vres_cells_permute(vres_cells *g, void **slot, size_t elem_size, size_t cap);
+
 /* Apply the last build's permutation to every per-particle array of d (field.h's table), so
  * that slot s of the cells is particle s of the domain. perm is kept, so other arrays may
  * follow with vres_cells_gather. Returns 0, or -1 after printing why (d->n differs from g->n). */
 int vres_cells_reorder(vres_cells *g, vres_domain *d);
+
+/* vres_cells_reorder by vres_cells_permute: d's arrays are swapped for gathered copies (blocks
+ * with room for d->cap), so d must own its arrays (vres_domain_reserve's) and nothing may keep a
+ * pointer to them across the call. */
+int vres_cells_reorder_swap(vres_cells *g, vres_domain *d);
 
 /* Map positions along periodic axes into [lo, hi) (a particle that crossed the boundary
  * re-enters on the other side); other axes are left alone. */

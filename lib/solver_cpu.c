@@ -67,16 +67,18 @@ static cpu_ctx *ctx_of(vres_backend *b)
     return (cpu_ctx *)b->ctx;
 }
 
-/* Sort by cell, carrying the run's own per-particle arrays (and the step start mid-step). */
+/* Sort by cell, carrying the run's own per-particle arrays (and the step start mid-step). The
+ * arrays are swapped for their gathered copies (vres_cells_permute): every reader takes them from
+ * the domain or the work list after the sort (the coupling's donor views are refreshed). */
 static int cpu_sort(vres_backend *b, int carry)
 {
     cpu_ctx *x = ctx_of(b);
     vres_domain *d = x->d;
     vres_cells_build(&x->cells, d->pos, d->n);
-    if (vres_cells_reorder(&x->cells, d) != 0) return -1;
+    if (vres_cells_reorder_swap(&x->cells, d) != 0) return -1;
     for (int k = 0; k < x->nwork; k++)
         if (x->work[k].follow == VRES_WORK_CARRY || vres_work_carried(&x->work[k], carry))
-            vres_cells_gather(&x->cells, *x->work[k].p, x->work[k].elem);
+            vres_cells_permute(&x->cells, x->work[k].p, x->work[k].elem, x->cap);
     return 0;
 }
 
