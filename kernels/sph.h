@@ -719,14 +719,18 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_cand_d(const vres_sph_cand
 }
 
 /* The kept pairs of one pass of the cell-wise interaction (vres_sph_interact_v): what the physics
- * needs of each neighbour b, in single precision (vres_sph_pair_prs' comment). */
+ * needs of each neighbour b, in single precision (vres_sph_pair_prs' comment). In 2D the pair
+ * loop reads b's velocity, density, pressure and mass by its slot instead (loads by index there
+ * cost less than the copies here: about 5% of a 2D run's interaction; in 3D, whose velocities are
+ * interleaved, they did not). */
 typedef struct vres_sph_pairs {
     float dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
     float r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
-    float vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s; vy 3D) */
-    float mb[VRES_SPH_LIST];                                       /* b's mass (kg) */
-    float rhob[VRES_SPH_LIST];                                     /* b's density (kg/m^3) */
-    float pb[VRES_SPH_LIST];                                       /* b's pressure (Pa) */
+    float vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s; 3D) */
+    float mb[VRES_SPH_LIST];                                       /* b's mass (kg; 3D) */
+    float rhob[VRES_SPH_LIST];                                     /* b's density (kg/m^3; 3D) */
+    float pb[VRES_SPH_LIST];                                       /* b's pressure (Pa; 3D) */
+    int b[VRES_SPH_LIST];                                          /* b's slot (2D) */
     float wall[VRES_SPH_LIST]; /* 1 for a wall b, else 0 (set when walls) */
     uint8_t buf[VRES_SPH_LIST]; /* 1 for a buffer b (set for a floating a) */
 } vres_sph_pairs;
@@ -756,9 +760,10 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_gather(vres_sph_pairs *Q, v
     double dx, dy, dz;
     vres_sph_cand_d(L, St, P, i, xa, ya, za, dim, &dx, &dy, &dz);
     Q->dx[k] = (float)dx, Q->dy[k] = (float)dy, Q->dz[k] = (float)dz, Q->r2[k] = (float)L->r2[i];
-    Q->vx[k] = P->vx[b * SV], Q->vz[k] = P->vz[b * SV], Q->mb[k] = (float)P->mass[b];
-    if (dim == 3) Q->vy[k] = P->vy[b * SV];
-    Q->rhob[k] = P->rho[b], Q->pb[k] = P->press[b];
+    if (dim == 3) {
+        Q->vx[k] = P->vx[b * SV], Q->vy[k] = P->vy[b * SV], Q->vz[k] = P->vz[b * SV];
+        Q->mb[k] = (float)P->mass[b], Q->rhob[k] = P->rho[b], Q->pb[k] = P->press[b];
+    } else Q->b[k] = (int)b;
     if (dbl) {
         D->dx[k] = dx, D->dy[k] = dy, D->dz[k] = dz, D->r2[k] = L->r2[i];
         D->mb[k] = P->mass[b], D->inv_rhob[k] = P->inv_rho[b];
@@ -956,7 +961,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres
  *   2. keeps those inside the support, without a branch (the cells hold about three (2D) to
  *      six (3D) times as many as the kernel reaches, and a per-candidate branch is mispredicted
  *      about as often as it is taken);
- *   3. gathers what the pair physics needs of each kept neighbour into arrays Q;
+ *   3. gathers what the pair physics needs of each kept neighbour into arrays Q (in 2D its
+ *      offsets and slot, step 4 reading the rest by the slot);
  *   4. computes every pair's terms over those arrays into arrays T, without a branch (vector
  *      instructions again: selects where vres_sph_interact branches);
  *   5. adds the terms in pair order.
@@ -1035,16 +1041,19 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
            would not be vectorised. Each dot product adds x, y, z in that order, as the scalar form. */
 #pragma omp simd
         for (int j = 0; j < np; j++) {
-            const float dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j], mb = Q.mb[j], rhob = Q.rhob[j];
+            const int b = D3 ? 0 : Q.b[j]; /* 2D: b's data by its slot */
+            const float mb = D3 ? Q.mb[j] : (float)P->mass[b], rhob = D3 ? Q.rhob[j] : P->rho[b];
+            const float vxb = D3 ? Q.vx[j] : P->vx[b], vzb = D3 ? Q.vz[j] : P->vz[b], pb = D3 ? Q.pb[j] : P->press[b];
+            const float dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j];
             const float dy = D3 ? Q.dy[j] : 0.0f;
             const float r = sqrtf(r2), F = vres_sph_kernel_ff(C, kernel, r);
             const float frx = F * dx, fry = F * dy, frz = F * dz;
-            const float dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j], dvy = D3 ? vya - Q.vy[j] : 0.0f;
+            const float dvx = vxa - vxb, dvz = vza - vzb, dvy = D3 ? vya - Q.vy[j] : 0.0f;
             const float inv_r2eta = 1.0f / (r2 + eta2), inv_rhob = 1.0f / rhob;
             T.arp[j] = mb * (D3 ? dvx * frx + dvy * fry + dvz * frz : dvx * frx + dvz * frz);
             const float dot = D3 ? dx * dvx + dy * dvy + dz * dvz : dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
             T.rate[j] = dot_rr2;
-            const float prs = vres_sph_pair_prs(C, kernel, mb, pa, Q.pb[j], inv_rhoa, inv_rhob, r, ra);
+            const float prs = vres_sph_pair_prs(C, kernel, mb, pa, pb, inv_rhoa, inv_rhob, r, ra);
             const float vis = walls && (float_a || Q.wall[j] != 0.0f) ? visc_wall : visc_fluid; /* the pair's Visco */
             const float vc = VRES_VISC_IS_LAMINAR(viscosity)
                                  ? vres_sph_pair_laminar(vis, mb, rhoa, rhob,
@@ -1069,7 +1078,9 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                 const double frx = F * dx, fry = F * dy, frz = F * dz;
                 if (sps) { /* vres_sph_tau_v's terms, operation for operation */
                     const double svol = -(D.mb[j] * D.inv_rhob[j]);
-                    const double du = ((double)vxa - Q.vx[j]) * svol, dw = ((double)vza - Q.vz[j]) * svol;
+                    const int b = D3 ? 0 : Q.b[j];
+                    const double du = ((double)vxa - (D3 ? Q.vx[j] : P->vx[b])) * svol;
+                    const double dw = ((double)vza - (D3 ? Q.vz[j] : P->vz[b])) * svol;
                     T.s[0][j] = du * frx;
                     T.s[2][j] = du * frz + dw * frx;
                     T.s[5][j] = dw * frz;

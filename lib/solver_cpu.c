@@ -82,26 +82,42 @@ static int cpu_sort(vres_backend *b, int carry)
     return 0;
 }
 
+/* memcpy of `bytes` bytes, a part per thread when there are enough of them to pay for it. */
+static void copy_parallel(void *dst, const void *src, size_t bytes)
+{
+    if (bytes < ((size_t)1 << 16)) {
+        memcpy(dst, src, bytes);
+        return;
+    }
+#pragma omp parallel
+    {
+        const size_t t = (size_t)omp_get_thread_num(), T = (size_t)omp_get_num_threads();
+        const size_t b0 = bytes * t / T, b1 = bytes * (t + 1) / T;
+        memcpy((char *)dst + b0, (const char *)src + b0, b1 - b0);
+    }
+}
+
+/* Copy the state fields of domain `from` into `to` (n particles). */
+static void copy_state(vres_domain *to, const vres_domain *from, size_t n)
+{
+    for (int k = 0; k < VRES_NFIELDS; k++)
+        if (vres_fields[k].state)
+            copy_parallel(vres_field_array(to, &vres_fields[k]), vres_field_array(from, &vres_fields[k]),
+                          n * vres_fields[k].elem);
+}
+
 /* Keep the current state as the step's start. */
 static void cpu_save_start(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
-    vres_domain *d = x->d;
-    for (int k = 0; k < VRES_NFIELDS; k++)
-        if (vres_fields[k].state)
-            memcpy(vres_field_array(&x->start, &vres_fields[k]), vres_field_array(d, &vres_fields[k]),
-                   d->n * vres_fields[k].elem);
+    copy_state(&x->start, x->d, x->d->n);
 }
 
 /* Put the step's start back. */
 static void cpu_restore_start(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
-    vres_domain *d = x->d;
-    for (int k = 0; k < VRES_NFIELDS; k++)
-        if (vres_fields[k].state)
-            memcpy(vres_field_array(d, &vres_fields[k]), vres_field_array(&x->start, &vres_fields[k]),
-                   d->n * vres_fields[k].elem);
+    copy_state(x->d, &x->start, x->d->n);
 }
 
 /* mDBC wall densities for the current positions, and with SlipMode 2 or 3 the wall velocities

@@ -6,6 +6,7 @@
  * over particles already in cell order moves nothing; and a 1M-particle 3D build works. */
 #include <check.h>
 #include <math.h>
+#include <omp.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -335,6 +336,75 @@ END_TEST
 /* A cell of many particles (a crowd a blow-up could leave) is sorted by x too, with equal x in
    input order, as the small cells around it: the build's two ways of sorting a cell agree on the
    order. */
+/* The counting sort in parallel (each of two threads counts and places half the particles) gives
+ * the permutation of one thread's serial sort, slot for slot, with particles outside the box
+ * and several per cell: the order within a cell, and so every sum over neighbours, does not
+ * depend on the thread count. */
+START_TEST(parallel_sort_matches_serial)
+{
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const size_t n = 20000; /* above the parallel sort's threshold */
+    double *pos = random_positions(n, 3, lo, hi, 5);
+    for (size_t i = 0; i < n; i += 97) pos[3 * i + 2] = 1.5; /* outside: sorted after every cell */
+    vres_cells g1, g2;
+    ck_assert_int_eq(vres_cells_init(&g1, 3, 0.1, lo, hi, NULL), 0);
+    ck_assert_int_eq(vres_cells_init(&g2, 3, 0.1, lo, hi, NULL), 0);
+    const int nt = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const size_t out1 = vres_cells_build(&g1, pos, n);
+    omp_set_num_threads(2);
+    const size_t out2 = vres_cells_build(&g2, pos, n);
+    omp_set_num_threads(nt);
+    ck_assert_ptr_null(g1.hist);    /* one thread: the serial sort */
+    ck_assert_ptr_nonnull(g2.hist); /* two: the parallel one */
+    ck_assert_uint_gt(out1, 0);
+    ck_assert_uint_eq(out1, out2);
+    ck_assert_uint_eq(g1.first_out, g2.first_out);
+    for (size_t c = 0; c <= g1.ncells + 1; c++) ck_assert_uint_eq(g1.begin[c], g2.begin[c]);
+    for (size_t s = 0; s < n; s++) ck_assert_uint_eq(g1.perm[s], g2.perm[s]);
+    check_sorted(&g2, pos);
+    vres_cells_free(&g1);
+    vres_cells_free(&g2);
+    free(pos);
+}
+END_TEST
+
+/* vres_cells_permute gives the gather's values and swaps blocks: the array's slot holds another
+ * block after it (the old one kept as the spare), with room for cap elements; an array without
+ * room for the count (cap < n) is gathered in place, in its own block. */
+START_TEST(permute_swaps_gathered_copy)
+{
+    double lo[3] = {0, 0, 0}, hi[3] = {1, 0, 1};
+    const size_t n = 3000, cap = n + 100;
+    double *pos = random_positions(n, 2, lo, hi, 9);
+    vres_cells g;
+    ck_assert_int_eq(vres_cells_init(&g, 2, 0.05, lo, hi, NULL), 0);
+    vres_cells_build(&g, pos, n);
+    ck_assert_int_eq(g.in_order, 0);
+    double *ref = malloc(3 * n * sizeof *ref), *a = malloc(3 * cap * sizeof *a);
+    float *f = malloc(n * sizeof *f);
+    memcpy(ref, pos, 3 * n * sizeof *ref);
+    memcpy(a, pos, 3 * n * sizeof *a);
+    for (size_t i = 0; i < n; i++) f[i] = (float)i;
+    vres_cells_gather(&g, ref, 3 * sizeof(double));
+    void *slot = a;
+    vres_cells_permute(&g, &slot, 3 * sizeof(double), cap);
+    ck_assert_ptr_ne(slot, a);    /* swapped for the gathered copy */
+    ck_assert_ptr_eq(g.spare, a); /* the old block is the spare now */
+    ck_assert(memcmp(slot, ref, 3 * n * sizeof *ref) == 0);
+    ((double *)slot)[3 * cap - 1] = 1.0; /* the new block has room for cap elements */
+    void *fs = f;
+    vres_cells_permute(&g, &fs, sizeof(float), n - 1); /* room for fewer than n: in place */
+    ck_assert_ptr_eq(fs, f);
+    for (size_t s = 0; s < n; s++) ck_assert(f[s] == (float)g.perm[s]);
+    free(slot);
+    free(f);
+    free(ref);
+    free(pos);
+    vres_cells_free(&g); /* frees the spare, the block a was */
+}
+END_TEST
+
 START_TEST(crowded_cell_sorted_by_x)
 {
     double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
@@ -465,6 +535,8 @@ int main(void)
     tcase_add_test(tc, outside_reported);
     tcase_add_test(tc, in_order_gathers_nothing);
     tcase_add_test(tc, crowded_cell_sorted_by_x);
+    tcase_add_test(tc, parallel_sort_matches_serial);
+    tcase_add_test(tc, permute_swaps_gathered_copy);
     tcase_add_test(tc, wrap_positions);
     tcase_add_test(tc, bad_parameters);
     tcase_add_test(tc, bbox);
