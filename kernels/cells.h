@@ -37,6 +37,9 @@ extern "C" { /* usable from the CUDA sources (.cu, compiled as C++) */
 /* A cell-linked list over a fixed box. Fields are read by the inline helpers below (so a
  * device copy of the struct, with device pointers, works in CUDA code); set them only
  * through lib/cells.h's vres_cells_init / vres_cells_build. */
+/* Spare blocks vres_cells_permute keeps, one per size of array it is given (beyond: in place). */
+#define VRES_CELLS_NSPARE 8
+
 typedef struct vres_cells {
     int dim;            /* 2 (x-z plane, one cell layer in y) or 3 */
     int periodic[3];    /* 1 where the axis wraps with period hi - lo */
@@ -56,11 +59,12 @@ typedef struct vres_cells {
                            does; a backend's own sort may not), so that a row of cells is sorted by x */
     size_t nout;        /* particles outside the box at the last build */
     size_t first_out;   /* smallest index of those, (size_t)-1 when there is none */
-    size_t cap;         /* particles perm, key and scratch have room for */
+    size_t cap;         /* particles perm and key have room for */
     size_t *key;        /* [cap] work array of the build: each particle's cell (ncells when outside) */
-    void *scratch;      /* [cap * 24 bytes] work buffer of vres_cells_gather */
-    void *spare;        /* the buffer vres_cells_permute gathers into and swaps in (a permuted array's old block) */
-    size_t spare_bytes; /* bytes spare has room for */
+    void *scratch;      /* [scratch_cap * 24 bytes] work buffer of vres_cells_gather, made on its first use */
+    size_t scratch_cap; /* particles scratch has room for */
+    void *spare[VRES_CELLS_NSPARE];         /* the blocks vres_cells_permute gathers into and swaps in (permuted arrays' old blocks) */
+    size_t spare_bytes[VRES_CELLS_NSPARE];  /* each one's size in bytes (0: none): one block per size of array */
     size_t *hist;       /* [hist_cap] the build's counts per thread and cell (a parallel counting sort) */
     size_t hist_cap;    /* entries hist has room for */
 } vres_cells;

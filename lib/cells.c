@@ -197,7 +197,6 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n)
         size_t cap = n + n / 4; /* room to grow a little without reallocating every step */
         g->perm = vres_xrealloc(g->perm, cap * sizeof *g->perm);
         g->key = vres_xrealloc(g->key, cap * sizeof *g->key);
-        g->scratch = vres_xrealloc(g->scratch, cap * VRES_CELLS_ELEM_MAX);
         g->cap = cap;
     }
     size_t nc = g->ncells, *key = g->key, *begin = g->begin;
@@ -262,6 +261,11 @@ static int cells_gather_into(const vres_cells *g, void *dst, const void *src, si
 void vres_cells_gather(vres_cells *g, void *array, size_t elem_size)
 {
     if (!array || !g->n || g->in_order) return;
+    if (g->scratch_cap < g->cap) { /* made on the first use: the solver's sorts do not need it */
+        free(g->scratch);
+        g->scratch = vres_xmalloc(g->cap * VRES_CELLS_ELEM_MAX);
+        g->scratch_cap = g->cap;
+    }
     if (cells_gather_into(g, g->scratch, array, elem_size) == 0) memcpy(array, g->scratch, g->n * elem_size);
 }
 
@@ -272,17 +276,21 @@ void vres_cells_permute(vres_cells *g, void **slot, size_t elem_size, size_t cap
         vres_cells_gather(g, *slot, elem_size);
         return;
     }
+    /* the spare block of this size, else a new one: each array then stays in blocks of its own
+       size (a block of another size taken and replaced would leave large blocks holding small
+       arrays, and take fresh large ones, sort after sort) */
     const size_t need = cap * elem_size;
-    if (g->spare_bytes < need) { /* the last block swapped out is too small: its content is not needed */
-        free(g->spare);
-        g->spare = vres_xmalloc(need);
-        g->spare_bytes = need;
+    int k = 0;
+    while (k < VRES_CELLS_NSPARE && g->spare_bytes[k] != need && g->spare_bytes[k] != 0) k++;
+    if (k == VRES_CELLS_NSPARE) { /* more sizes than spares: in place */
+        vres_cells_gather(g, *slot, elem_size);
+        return;
     }
-    if (cells_gather_into(g, g->spare, *slot, elem_size) != 0) return;
+    if (g->spare_bytes[k] == 0) g->spare[k] = vres_xmalloc(need), g->spare_bytes[k] = need;
+    if (cells_gather_into(g, g->spare[k], *slot, elem_size) != 0) return;
     void *old = *slot;
-    *slot = g->spare; /* the gathered copy, with room for cap elements */
-    g->spare = old;   /* the caller's old block, which had room for cap */
-    g->spare_bytes = need;
+    *slot = g->spare[k]; /* the gathered copy, with room for cap elements */
+    g->spare[k] = old;   /* the caller's old block, which had room for cap: this size's spare */
 }
 
 /* vres_cells_reorder, in place or (swap 1) by vres_cells_permute with d's room d->cap. */
@@ -319,7 +327,7 @@ void vres_cells_free(vres_cells *g)
     free(g->perm);
     free(g->key);
     free(g->scratch);
-    free(g->spare);
+    for (int k = 0; k < VRES_CELLS_NSPARE; k++) free(g->spare[k]);
     free(g->hist);
     memset(g, 0, sizeof *g);
     g->first_out = (size_t)-1;

@@ -47,11 +47,12 @@ size_t vres_cells_build(vres_cells *g, const double *pos, size_t n);
 void vres_cells_gather(vres_cells *g, void *array, size_t elem_size);
 
 /* vres_cells_gather without the copy back: the array *slot (n = g->n elements of elem_size bytes,
- * a block from malloc with room for cap elements) is gathered into the cells' spare block, which
- * takes its place in *slot, and the old block becomes the spare. For arrays whose owner keeps no
- * other pointer to them across a sort (the solver's, which it reads through their slots); half the
- * memory traffic of a gather and its copy. With cap < n (a block of unknown room) it gathers in
- * place instead. */
+ * a block from malloc with room for cap elements) is gathered into the cells' spare block of that
+ * size (cap * elem_size bytes; made on first need), which takes its place in *slot, and the old
+ * block becomes the spare. For arrays whose owner keeps no other pointer to them across a sort
+ * (the solver's, which it reads through their slots); half the memory traffic of a gather and its
+ * copy, for one block more per size of array. With cap < n (a block of unknown room), or more
+ * sizes than VRES_CELLS_NSPARE, it gathers in place instead. */
 void vres_cells_permute(vres_cells *g, void **slot, size_t elem_size, size_t cap);
 
 /* Apply the last build's permutation to every per-particle array of d (field.h's table), so

@@ -381,6 +381,7 @@ START_TEST(permute_swaps_gathered_copy)
     ck_assert_int_eq(vres_cells_init(&g, 2, 0.05, lo, hi, NULL), 0);
     vres_cells_build(&g, pos, n);
     ck_assert_int_eq(g.in_order, 0);
+    ck_assert_ptr_null(g.scratch); /* the in-place gather's buffer: made on its first use only */
     double *ref = malloc(3 * n * sizeof *ref), *a = malloc(3 * cap * sizeof *a);
     float *f = malloc(n * sizeof *f);
     memcpy(ref, pos, 3 * n * sizeof *ref);
@@ -390,18 +391,31 @@ START_TEST(permute_swaps_gathered_copy)
     void *slot = a;
     vres_cells_permute(&g, &slot, 3 * sizeof(double), cap);
     ck_assert_ptr_ne(slot, a);    /* swapped for the gathered copy */
-    ck_assert_ptr_eq(g.spare, a); /* the old block is the spare now */
+    ck_assert_ptr_eq(g.spare[0], a); /* the old block is this size's spare now */
+    ck_assert_uint_eq(g.spare_bytes[0], 3 * cap * sizeof(double));
     ck_assert(memcmp(slot, ref, 3 * n * sizeof *ref) == 0);
     ((double *)slot)[3 * cap - 1] = 1.0; /* the new block has room for cap elements */
     void *fs = f;
     vres_cells_permute(&g, &fs, sizeof(float), n - 1); /* room for fewer than n: in place */
     ck_assert_ptr_eq(fs, f);
     for (size_t s = 0; s < n; s++) ck_assert(f[s] == (float)g.perm[s]);
+    /* a second array of the first one's size: swapped with that size's spare, a block of the
+       first array's (sort after sort, each array stays in blocks of its own size) */
+    double *a2 = malloc(3 * cap * sizeof *a2);
+    memcpy(a2, pos, 3 * n * sizeof *a2);
+    void *slot2 = a2;
+    vres_cells_permute(&g, &slot2, 3 * sizeof(double), cap);
+    ck_assert_ptr_eq(slot2, a);
+    ck_assert_ptr_eq(g.spare[0], a2);
+    ck_assert(memcmp(slot2, ref, 3 * n * sizeof *ref) == 0);
+    free(slot2);
+    g.spare[0] = NULL, g.spare_bytes[0] = 0; /* a2 is freed below, as the caller's */
+    free(a2);
     free(slot);
     free(f);
     free(ref);
     free(pos);
-    vres_cells_free(&g); /* frees the spare, the block a was */
+    vres_cells_free(&g);
 }
 END_TEST
 
