@@ -254,6 +254,89 @@ VRES_HD static inline void vres_sph_shift_sums(size_t a, const vres_cell_range *
     shiftv[4 * a + 3] = divr;
 }
 
+/* The sums of the interaction's single-precision pair terms (the continuity, momentum and density
+ * diffusion rates of a particle) are made in four parts: the terms of a particle's q-th pair (q
+ * from 0, in the order of its neighbours) go to part q mod 4, each part adds its terms in order,
+ * in double, and the total is (s0 + s1) + (s2 + s3) (vres_sph_total4). The cell-wise loop then adds
+ * four terms with one vector instruction (vres_sph_sum4), and the per-particle loop gives the same
+ * bits. */
+
+#ifdef VRES_KEEP8
+typedef vres_v4d vres_sph_part4;  /* the four parts of a sum (part k in lane k), in one vector */
+typedef vres_v4f vres_sph_fpart4; /* the same of four floats (the parts of a maximum) */
+#define VRES_SPH_PART(s, k) ((s)[k])
+#else
+typedef struct vres_sph_part4 {
+    double v[4]; /* the four parts of a sum */
+} vres_sph_part4;
+typedef struct vres_sph_fpart4 {
+    float v[4]; /* the four parts of a maximum */
+} vres_sph_fpart4;
+#define VRES_SPH_PART(s, k) ((s).v[k])
+#endif
+
+/* Four parts of zero. */
+VRES_HD static inline VRES_FORCE_INLINE vres_sph_part4 vres_sph_zero4(void)
+{
+    vres_sph_part4 z;
+    for (int k = 0; k < 4; k++) VRES_SPH_PART(z, k) = 0.0;
+    return z;
+}
+
+/* Four parts of zero, of a maximum. */
+VRES_HD static inline VRES_FORCE_INLINE vres_sph_fpart4 vres_sph_fzero4(void)
+{
+    vres_sph_fpart4 z;
+    for (int k = 0; k < 4; k++) VRES_SPH_PART(z, k) = 0.0f;
+    return z;
+}
+
+/* s part k += t[j + k] for j = 0, 4, ... < n (n a multiple of 4), each term rounded up to
+ * double: the four parts of a sum, their terms from the pairs in order. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_sph_sum4(vres_sph_part4 *s, const float *t, int n)
+{
+#ifdef VRES_KEEP8 /* one vector add of four doubles per group (GCC's own vectorisation took two of two) */
+    for (int j = 0; j < n; j += 4) {
+        vres_v4f f;
+        memcpy(&f, t + j, sizeof f);
+        *s += __builtin_convertvector(f, vres_v4d);
+    }
+#else
+    for (int j = 0; j < n; j += 4)
+        for (int k = 0; k < 4; k++) s->v[k] += (double)t[j + k];
+#endif
+}
+
+/* mx part k = the largest of it and t[j + k] for j = 0, 4, ... < n (n a multiple of 4); NaN
+ * terms are passed over, as the running maximum rate > vmax ? rate : vmax does. */
+VRES_HD static inline VRES_FORCE_INLINE void vres_sph_max4(vres_sph_fpart4 *mx, const float *t, int n)
+{
+    for (int j = 0; j < n; j += 4) {
+#ifdef VRES_KEEP8
+        vres_v4f f;
+        memcpy(&f, t + j, sizeof f);
+        const vres_v4i gt = f > *mx; /* lanes where the term is larger (false for NaN) */
+        *mx = (vres_v4f)(((vres_v4i)f & gt) | ((vres_v4i)*mx & ~gt));
+#else
+        for (int k = 0; k < 4; k++) mx->v[k] = t[j + k] > mx->v[k] ? t[j + k] : mx->v[k];
+#endif
+    }
+}
+
+/* The total (s0 + s1) + (s2 + s3) of the four parts s of a sum. */
+VRES_HD static inline double vres_sph_total4(vres_sph_part4 s)
+{
+    return (VRES_SPH_PART(s, 0) + VRES_SPH_PART(s, 1)) + (VRES_SPH_PART(s, 2) + VRES_SPH_PART(s, 3));
+}
+
+/* The largest of the four parts m of a maximum. */
+VRES_HD static inline float vres_sph_max_of4(vres_sph_fpart4 m)
+{
+    const float m01 = VRES_SPH_PART(m, 1) > VRES_SPH_PART(m, 0) ? VRES_SPH_PART(m, 1) : VRES_SPH_PART(m, 0);
+    const float m23 = VRES_SPH_PART(m, 3) > VRES_SPH_PART(m, 2) ? VRES_SPH_PART(m, 3) : VRES_SPH_PART(m, 2);
+    return m23 > m01 ? m23 : m01;
+}
+
 /* 1 when wall particles of types ta and tb interact (walls VRES_WALLS_FLOATING only): one of
  * them floating and the other not, so that a body meets the walls and other bodies' walls (a
  * pair within one body adds nothing to its body's force: its terms cancel in the sum); two
@@ -284,7 +367,8 @@ VRES_HD static inline int vres_sph_walls_meet(const int walls, int ta, int tb)
  * concentration gradient grad C = sum_b V_b grad_a W_ab (1/m) and the position divergence
  * div r = -sum_b V_b x_ab . grad_a W_ab (dim inside the fluid, less near a free surface) into
  * shiftv[4a..4a+3], V_b = m_b/rho_b; NaN in shiftv[4a] when a wall neighbour cancels the
- * particle's shifting (C.shift_mode 1 or 2, as DualSPHysics). */
+ * particle's shifting (C.shift_mode 1 or 2, as DualSPHysics). The single-precision terms are
+ * summed in four parts by pair ordinal (see vres_sph_part4), the double ones in pair order. */
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vres_cells *g, const double *pos, const float *vel,
                                              const float *rho, const float *press, const double *mass,
                                              const uint8_t *type, vres_sph_consts C, double *ace, double *ar,
@@ -308,8 +392,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
     const float ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_rf(pa, inv_rhoa) : 0.0f; /* a's tensile part */
     const float visc_fluid = (float)(VRES_VISC_IS_LAMINAR(viscosity) ? C.nu : C.alpha);      /* a pair's Visco */
     const float visc_wall = (float)(VRES_VISC_IS_LAMINAR(viscosity) ? C.nu_wall : C.alpha_wall);
-    double acc[3] = {0, 0, 0}, arp = 0, vmax = 0, diff = 0, gc[3] = {0, 0, 0}, divr = 0;
-    int noshift = 0;
+    /* a's sums of single-precision terms in four parts by the pair's ordinal (vres_sph_sum4) */
+    vres_sph_part4 acc[3] = {vres_sph_zero4(), vres_sph_zero4(), vres_sph_zero4()}, arp = vres_sph_zero4();
+    vres_sph_part4 diff = vres_sph_zero4();
+    double vmax = 0, gc[3] = {0, 0, 0}, divr = 0;
+    int noshift = 0, q = 0; /* q: how many pairs came before */
     vres_cell_range nb[27];
     int m = vres_cells_neighbours(g, xa, nb);
     for (int c = 0; c < m; c++)
@@ -323,6 +410,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                                   xa[2] - (pos[3 * b + 2] + nb[c].shift[2])};
             const double r2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
             if (r2 >= C.fourh2 || r2 < 1e-18 * C.fourh2) continue; /* outside the support, or a itself */
+            const int lane = q++ & 3; /* the part of a's sums this pair's terms go to */
             /* the pair terms in single precision (vres_sph_pair_prs' comment) */
             const float fx[3] = {(float)dx[0], (float)dx[1], (float)dx[2]}, fr2 = (float)r2, r = sqrtf(fr2);
             const float F = vres_sph_kernel_ff(&C, kernel, r);
@@ -331,7 +419,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
             const float mb = (float)mass[b], rhob = rho[b], inv_r2eta = 1.0f / (fr2 + (float)C.eta2);
             const float dot = fx[0] * dv[0] + fx[1] * dv[1] + fx[2] * dv[2], rate = dot * inv_r2eta;
             /* a floating body's density leaves buffer particles out too (its force takes them) */
-            if (!float_a || !vres_type_is_buffer(type[b])) arp += mb * (dv[0] * fr[0] + dv[1] * fr[1] + dv[2] * fr[2]);
+            if (!float_a || !vres_type_is_buffer(type[b]))
+                VRES_SPH_PART(arp, lane) += mb * (dv[0] * fr[0] + dv[1] * fr[1] + dv[2] * fr[2]);
             vmax = rate > vmax ? rate : vmax;
             if (!fluid_a && !float_a) continue;
             const float inv_rhob = 1.0f / rhob, vis = wall_b || float_a ? visc_wall : visc_fluid;
@@ -340,10 +429,11 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
                                  ? vres_sph_pair_laminar(vis, mb, rhoa, rhob,
                                                          fx[0] * fr[0] + fx[1] * fr[1] + fx[2] * fr[2], inv_r2eta)
                                  : vres_sph_pair_visc(&C, vis, mb, rhoa, rhob, dot, rate);
-            for (int k = 0; k < 3; k++) acc[k] += vres_sph_pair_acc(viscosity, prs, vc, fr[k], dv[k]);
+            for (int k = 0; k < 3; k++)
+                VRES_SPH_PART(acc[k], lane) += vres_sph_pair_acc(viscosity, prs, vc, fr[k], dv[k]);
             if (ddt != VRES_DDT_NONE && !wall_b && !float_a)
-                diff += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob, fx[0], fx[1], fx[2],
-                                          fr2, inv_r2eta, F);
+                VRES_SPH_PART(diff, lane) += vres_sph_pair_ddt(&C, ddt == VRES_DDT_FOURTAKAS, mb, rhoa, rhob, inv_rhob,
+                                                               fx[0], fx[1], fx[2], fr2, inv_r2eta, F);
             if (shift) { /* in double, as vres_sph_shift_sums (a buffer particle's) */
                 const double Fd = vres_sph_kernel_f(&C, kernel, sqrt(r2)), vol = mass[b] * (1.0 / (double)rhob);
                 const double frd[3] = {Fd * dx[0], Fd * dx[1], Fd * dx[2]};
@@ -360,11 +450,12 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
         shiftv[4 * a + 2] = gc[2];
         shiftv[4 * a + 3] = divr;
     }
-    ar[a] = arp + diff;
+    const double accs[3] = {vres_sph_total4(acc[0]), vres_sph_total4(acc[1]), vres_sph_total4(acc[2])};
+    ar[a] = vres_sph_total4(arp) + vres_sph_total4(diff);
     visc[a] = vmax;
-    ace[3 * a] = fluid_a ? acc[0] + C.g[0] : float_a ? acc[0] : 0.0;
-    ace[3 * a + 1] = fluid_a ? acc[1] + C.g[1] : float_a ? acc[1] : 0.0;
-    ace[3 * a + 2] = fluid_a ? acc[2] + C.g[2] : float_a ? acc[2] : 0.0;
+    ace[3 * a] = fluid_a ? accs[0] + C.g[0] : float_a ? accs[0] : 0.0;
+    ace[3 * a + 1] = fluid_a ? accs[1] + C.g[1] : float_a ? accs[1] : 0.0;
+    ace[3 * a + 2] = fluid_a ? accs[2] + C.g[2] : float_a ? accs[2] : 0.0;
 }
 
 /* A buffer particle i advected over time tau (s) from pos0 with its current velocity, which the
@@ -562,6 +653,7 @@ typedef struct vres_sph_arrays {
     const double *inv_rho; /* [n] 1/rho, exactly 1.0 / (double)rho (m^3/kg) */
     const double *mass;    /* [n] masses (kg) */
     const uint8_t *type;   /* [n] particle types (kernels/ptype.h) */
+    size_t n;              /* how many particles (slots) the arrays hold */
     double *tau;           /* [6n] laminar+SPS: the interaction writes each particle's sub-particle stress over
                               rho^2 here (vres_sps_tau_from_strain; the one output among these); NULL otherwise */
     const uint32_t *nfl;   /* [n] how many of slots 0..s act as fluid (vres_type_acts_fluid), modulo 2^32: a DBC
@@ -624,7 +716,7 @@ VRES_HD static inline vres_sph_arrays vres_sph_arrays_make(size_t n, int dim, co
         P.x = xs, P.y = xs + n, P.z = xs + 2 * n;
         P.vx = vel, P.vy = vel + 1, P.vz = vel + 2;
     }
-    P.rho = rho, P.press = press, P.inv_rho = inv_rho, P.mass = mass, P.type = type;
+    P.rho = rho, P.press = press, P.inv_rho = inv_rho, P.mass = mass, P.type = type, P.n = n;
     P.tau = NULL;
     P.nfl = NULL;
     return P;
@@ -719,18 +811,14 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_cand_d(const vres_sph_cand
 }
 
 /* The kept pairs of one pass of the cell-wise interaction (vres_sph_interact_v): what the physics
- * needs of each neighbour b, in single precision (vres_sph_pair_prs' comment). In 2D the pair
- * loop reads b's velocity, density, pressure and mass by its slot instead (loads by index there
- * cost less than the copies here: about 5% of a 2D run's interaction; in 3D, whose velocities are
- * interleaved, they did not). */
+ * needs of each neighbour b, in single precision (vres_sph_pair_prs' comment). */
 typedef struct vres_sph_pairs {
     float dx[VRES_SPH_LIST], dy[VRES_SPH_LIST], dz[VRES_SPH_LIST]; /* x_ab, y_ab (3D), z_ab (m) */
     float r2[VRES_SPH_LIST];                                       /* r^2 (m^2) */
-    float vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s; 3D) */
-    float mb[VRES_SPH_LIST];                                       /* b's mass (kg; 3D) */
-    float rhob[VRES_SPH_LIST];                                     /* b's density (kg/m^3; 3D) */
-    float pb[VRES_SPH_LIST];                                       /* b's pressure (Pa; 3D) */
-    int b[VRES_SPH_LIST];                                          /* b's slot (2D) */
+    float vx[VRES_SPH_LIST], vy[VRES_SPH_LIST], vz[VRES_SPH_LIST]; /* b's velocity (m/s; vy 3D) */
+    float mb[VRES_SPH_LIST];                                       /* b's mass (kg) */
+    float rhob[VRES_SPH_LIST];                                     /* b's density (kg/m^3) */
+    float pb[VRES_SPH_LIST];                                       /* b's pressure (Pa) */
     float wall[VRES_SPH_LIST]; /* 1 for a wall b, else 0 (set when walls) */
     uint8_t buf[VRES_SPH_LIST]; /* 1 for a buffer b (set for a floating a) */
 } vres_sph_pairs;
@@ -760,10 +848,9 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_gather(vres_sph_pairs *Q, v
     double dx, dy, dz;
     vres_sph_cand_d(L, St, P, i, xa, ya, za, dim, &dx, &dy, &dz);
     Q->dx[k] = (float)dx, Q->dy[k] = (float)dy, Q->dz[k] = (float)dz, Q->r2[k] = (float)L->r2[i];
-    if (dim == 3) {
-        Q->vx[k] = P->vx[b * SV], Q->vy[k] = P->vy[b * SV], Q->vz[k] = P->vz[b * SV];
-        Q->mb[k] = (float)P->mass[b], Q->rhob[k] = P->rho[b], Q->pb[k] = P->press[b];
-    } else Q->b[k] = (int)b;
+    Q->vx[k] = P->vx[b * SV], Q->vz[k] = P->vz[b * SV];
+    if (dim == 3) Q->vy[k] = P->vy[b * SV];
+    Q->mb[k] = (float)P->mass[b], Q->rhob[k] = P->rho[b], Q->pb[k] = P->press[b];
     if (dbl) {
         D->dx[k] = dx, D->dy[k] = dy, D->dz[k] = dz, D->r2[k] = L->r2[i];
         D->mb[k] = P->mass[b], D->inv_rhob[k] = P->inv_rho[b];
@@ -950,6 +1037,182 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres
     vres_sps_tau_from_strain(st, P->rho[a], C->sps_smag, C->sps_blin, t);
 }
 
+/* Steps 1 to 3 of vres_sph_interact_v for particle a at (xa, ya, za) (m): the next pass of its
+ * candidates (vres_sph_pass, from range *cp at slot *b0p on; with dry_walls the ranges without
+ * fluid passed over), and the data of the pairs among them into Q (and D with dbl) by
+ * vres_sph_gather; a wall particle a (DBC) leaves out its wall and buffer neighbours. Options as in
+ * vres_sph_interact_v; sets *noshift as vres_sph_gather. Returns the count of pairs. */
+VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass_gather(vres_sph_pairs *Q, vres_sph_pairs_d *D, size_t a,
+                                                                 const vres_sph_stencil *St, const vres_sph_arrays *P,
+                                                                 const vres_sph_consts *C, int *cp, size_t *b0p,
+                                                                 double xa, double ya, double za, const int dim,
+                                                                 const int walls, const int fluid_a, const int float_a,
+                                                                 const int shift, const int dbl, const int dry_walls,
+                                                                 int *noshift)
+{
+    vres_sph_cands L;
+    const int nkept = vres_sph_pass(&L, St, P, C, cp, b0p, xa, ya, za, dim, dry_walls); /* 1 and 2 */
+    int np = 0;
+    if (fluid_a) { /* every kept neighbour is a pair: slot j is pair j, no store waits on a count */
+        for (int j = 0; j < nkept; j++)
+            vres_sph_gather(Q, D, j, &L, L.kept[j], St, P, C, xa, ya, za, dim, walls, float_a, shift, dbl, noshift);
+        return nkept;
+    }
+    for (int j = 0; j < nkept; j++) {
+        const size_t b = L.b[L.kept[j]];
+        const int wall_b =
+            vres_sph_gather(Q, D, np, &L, L.kept[j], St, P, C, xa, ya, za, dim, walls, float_a, shift, dbl, noshift);
+        np += (!wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b])) &&
+              (float_a || !vres_type_is_buffer(P->type[b])); /* nor buffer particles */
+    }
+    return np;
+}
+
+/* Each kept pair's terms of a particle's sums in the cell-wise interaction (vres_sph_interact_v).
+ * The single-precision ones have room for up to three terms a pass carries to the next and for
+ * the padding of the last pass to whole groups of four (vres_sph_sum_terms). */
+typedef struct vres_sph_terms {
+    float arp[VRES_SPH_LIST + 4];  /* continuity m_b v_ab . grad_a W_ab (kg/m^3/s) */
+    float rate[VRES_SPH_LIST + 4]; /* x_ab . v_ab / (r^2 + eta2) (1/s) */
+    float ax[VRES_SPH_LIST + 4], ay[VRES_SPH_LIST + 4], az[VRES_SPH_LIST + 4]; /* pressure and viscous acceleration
+                                                                                  (vres_sph_pair_acc; m/s^2; ay 3D) */
+    float diff[VRES_SPH_LIST + 4]; /* density diffusion (kg/m^3/s; 0 for a wall b) */
+    double gx[VRES_SPH_LIST], gy[VRES_SPH_LIST], gz[VRES_SPH_LIST]; /* shifting: V_b grad_a W_ab (1/m; gy 3D) */
+    double div[VRES_SPH_LIST];  /* shifting: V_b x_ab . grad_a W_ab (subtracted from div r) */
+    double s[6][VRES_SPH_LIST]; /* laminar+SPS: two_strain terms xx, xy, xz, yy, yz, zz (1/s; xy, yy, yz 3D) */
+} vres_sph_terms;
+
+/* A particle's sums in the cell-wise interaction: the single-precision terms' in four parts
+ * (vres_sph_sum4), the others' in pair order. */
+typedef struct vres_sph_sums {
+    vres_sph_part4 arp, diff;     /* continuity, density diffusion (kg/m^3/s) */
+    vres_sph_part4 ax, ay, az;    /* acceleration (m/s^2) */
+    vres_sph_fpart4 vmax;         /* largest x_ab . v_ab / (r^2 + eta2) (1/s) */
+    double gcx, gcy, gcz, divr;   /* shifting: grad C (1/m) and div r */
+    double s[6];                  /* laminar+SPS: two_strain (1/s) */
+} vres_sph_sums;
+
+/* Step 5 of vres_sph_interact_v for one pass: the terms T of its np pairs, after the r0 that the
+ * pass before left (T's single-precision arrays hold r0 + np terms from 0, the double ones np),
+ * into the sums S. The single-precision terms are added in whole groups of four, the last pass
+ * (last 1) padded with -0.0 (x + -0.0 is x, for every x) and zero rates; what is left of a pass
+ * that is not the last (up to three terms) moves to the front of T for the next. Returns that
+ * count. buf (float_a only) flags the pairs whose b is a buffer particle, which a floating body's
+ * density leaves out; fluid_a, float_a, ddt, shift, sps and dim as in vres_sph_interact_v. */
+VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S, vres_sph_terms *T, int r0, int np,
+                                                               const uint8_t *buf, const int last, const int fluid_a,
+                                                               const int float_a, const int ddt, const int shift,
+                                                               const int sps, const int dim)
+{
+    const int D3 = dim == 3, nt = r0 + np, ng = last ? (nt + 3) & ~3 : nt & ~3;
+    if (float_a)
+        for (int j = 0; j < np; j++)
+            if (buf[j]) T->arp[r0 + j] = -0.0f; /* a floating body's density: no buffer */
+    for (int j = nt; j < ng; j++) T->arp[j] = T->ax[j] = T->ay[j] = T->az[j] = T->diff[j] = -0.0f, T->rate[j] = 0.0f;
+    vres_sph_sum4(&S->arp, T->arp, ng);
+    vres_sph_max4(&S->vmax, T->rate, ng);
+    if (fluid_a || float_a) { /* a wall particle a sums only its density rate, a floating one its acceleration too */
+        vres_sph_sum4(&S->ax, T->ax, ng);
+        if (D3) vres_sph_sum4(&S->ay, T->ay, ng);
+        vres_sph_sum4(&S->az, T->az, ng);
+        if (ddt != VRES_DDT_NONE && !float_a) vres_sph_sum4(&S->diff, T->diff, ng);
+        if (shift)
+            for (int j = 0; j < np; j++) {
+                S->gcx += T->gx[j];
+                if (D3) S->gcy += T->gy[j];
+                S->gcz += T->gz[j];
+                S->divr -= T->div[j];
+            }
+    }
+    if (sps)
+        for (int j = 0; j < np; j++) {
+            S->s[0] += T->s[0][j], S->s[2] += T->s[2][j], S->s[5] += T->s[5][j];
+            if (D3) S->s[1] += T->s[1][j], S->s[3] += T->s[3][j], S->s[4] += T->s[4][j];
+        }
+    for (int j = ng; j < nt; j++) /* the rest leads the next pass */
+        T->arp[j - ng] = T->arp[j], T->rate[j - ng] = T->rate[j], T->ax[j - ng] = T->ax[j],
+                  T->ay[j - ng] = T->ay[j], T->az[j - ng] = T->az[j], T->diff[j - ng] = T->diff[j];
+    return nt - ng;
+}
+
+#ifdef VRES_KEEP8
+/* Steps 1 to 3 of vres_sph_interact_v at once for a fluid particle a at (xa, za) (m) in 2D, without
+ * the shifting and SPS terms: the next pass of its pairs in the ranges of its stencil St (from
+ * range *cp at slot *b0p on, both advanced past the pass; rows out of reach passed over whole),
+ * eight candidates at a time: their offsets and distances in double, the lanes inside the support
+ * (a itself out) moved to the front (vres_keep8_mask, vres_keep8_perm) and stored at the end of Q's
+ * list, rounded to float, with b's velocity, density, pressure and mass (whose slots are as
+ * contiguous as the positions) and, with walls, its wall flag. The same pairs in the same order,
+ * with the same bits, as vres_sph_pass, vres_keep_within and vres_sph_gather give; a pass stops
+ * when Q has no room left for a block. Returns how many pairs it stored. */
+VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass_pairs2d(vres_sph_pairs *Q, const vres_sph_stencil *St,
+                                                                  const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                                  int *cp, size_t *b0p, double xa, double za,
+                                                                  const int walls)
+{
+    const int m = St->m;
+    const vres_cell_range *nb = St->nb;
+    const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, far2 = fourh2 * (1 + 1e-6);
+    int c = *cp, np = 0;
+    size_t b0 = *b0p;
+    for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
+        if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, 0.0, za, far2)) continue; /* a row out of reach */
+        const double sx = nb[c].shift[0], sz = nb[c].shift[2];
+        const size_t e = nb[c].end;
+        for (; b0 < e; b0 += 8) {
+            if (np > VRES_SPH_LIST - 8) goto full;
+            const double *xb = P->x + b0, *zb = P->z + b0;
+            const uint8_t *typ = P->type + b0;
+            const int len = e - b0 < 8 ? (int)(e - b0) : 8; /* the range's slots in this block */
+            double tx[8], tz[8]; /* a block that runs past the arrays' end: copied, the rest padded */
+            uint8_t tt[8];
+            if (b0 + 8 > P->n) {
+                for (int j = 0; j < 8; j++) tx[j] = j < len ? xb[j] : xa, tz[j] = j < len ? zb[j] : za;
+                for (int j = 0; j < 8; j++) tt[j] = j < len ? typ[j] : 0;
+                xb = tx, zb = tz, typ = tt;
+            }
+            vres_v4d x0, x1, z0, z1;
+            memcpy(&x0, xb, sizeof x0), memcpy(&x1, xb + 4, sizeof x1);
+            memcpy(&z0, zb, sizeof z0), memcpy(&z1, zb + 4, sizeof z1);
+            /* vres_sph_pass' operations */
+            const vres_v4d dx0 = xa - (x0 + sx), dx1 = xa - (x1 + sx), dz0 = za - (z0 + sz), dz1 = za - (z1 + sz);
+            const vres_v4d r0 = dx0 * dx0 + dz0 * dz0, r1 = dx1 * dx1 + dz1 * dz1;
+            const int mask = vres_keep8_mask(r0, r1, tiny, fourh2) & ((1 << len) - 1);
+            if (!mask) continue;
+            const uint32_t w = vres_keep8_lut[mask];
+            const vres_v8i p = vres_keep8_perm(w);
+            vres_keep8_store(Q->dx + np, vres_keep8_float(dx0, dx1), p);
+            vres_keep8_store(Q->dz + np, vres_keep8_float(dz0, dz1), p);
+            vres_keep8_store(Q->r2 + np, vres_keep8_float(r0, r1), p);
+            if (b0 + 8 <= P->n) { /* b's data, whose slots are contiguous too */
+                vres_v8f f;
+                vres_v4d m0, m1;
+                memcpy(&f, P->vx + b0, sizeof f), vres_keep8_store(Q->vx + np, f, p);
+                memcpy(&f, P->vz + b0, sizeof f), vres_keep8_store(Q->vz + np, f, p);
+                memcpy(&f, P->rho + b0, sizeof f), vres_keep8_store(Q->rhob + np, f, p);
+                memcpy(&f, P->press + b0, sizeof f), vres_keep8_store(Q->pb + np, f, p);
+                memcpy(&m0, P->mass + b0, sizeof m0), memcpy(&m1, P->mass + b0 + 4, sizeof m1);
+                vres_keep8_store(Q->mb + np, vres_keep8_float(m0, m1), p);
+            } else /* the block runs past the arrays' end: each kept one by its slot */
+                for (int k = 0; k < (int)(w >> 24); k++) {
+                    const size_t b = b0 + ((w >> (3 * k)) & 7u);
+                    Q->vx[np + k] = P->vx[b], Q->vz[np + k] = P->vz[b], Q->rhob[np + k] = P->rho[b];
+                    Q->pb[np + k] = P->press[b], Q->mb[np + k] = (float)P->mass[b];
+                }
+            if (walls) {
+                vres_v8b t8;
+                memcpy(&t8, typ, sizeof t8);
+                vres_keep8_store(Q->wall + np, vres_keep8_walls(t8), p);
+            }
+            np += (int)(w >> 24);
+        }
+    }
+full:
+    *cp = c, *b0p = b0;
+    return np;
+}
+#endif
+
 /* vres_sph_interact, cell-wise and vectorised, in dimension dim (a compile-time constant in the
  * variants: 2, the x-z plane, y ignored, where every y offset and y velocity difference would be
  * zero and the sums below are those of vres_sph_interact term for term; or 3). Particle a's
@@ -961,15 +1224,18 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres
  *   2. keeps those inside the support, without a branch (the cells hold about three (2D) to
  *      six (3D) times as many as the kernel reaches, and a per-candidate branch is mispredicted
  *      about as often as it is taken);
- *   3. gathers what the pair physics needs of each kept neighbour into arrays Q (in 2D its
- *      offsets and slot, step 4 reading the rest by the slot);
+ *   3. gathers what the pair physics needs of each kept neighbour into arrays Q; in 2D a fluid
+ *      particle without shifting or SPS does steps 1 to 3 at once, eight candidates at a time
+ *      (vres_sph_pass_pairs2d);
  *   4. computes every pair's terms over those arrays into arrays T, without a branch (vector
  *      instructions again: selects where vres_sph_interact branches);
- *   5. adds the terms in pair order.
+ *   5. adds the terms: the single-precision ones in four parts by pair ordinal, four at a time
+ *      (vres_sph_sum4), the double ones (shifting, SPS) in pair order.
  * Step 4 calls the pair functions vres_sph_interact calls, on the same single-precision inputs
  * (each dot product x, y, z in that order; the shifting and SPS terms in double, as there), so
- * vector and scalar code give the same bits, and step 5 keeps the order of the sums: the results are vres_sph_interact's to the bit
- * (tests/lib/test_solver.c checks it in 2D and 3D). */
+ * vector and scalar code give the same bits, and step 5 keeps vres_sph_interact's order of the
+ * sums: the results are vres_sph_interact's to the bit (tests/lib/test_solver.c checks it in 2D
+ * and 3D). */
 VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const vres_sph_stencil *St,
                                                                const vres_sph_arrays *P, const vres_sph_consts *C,
                                                                double *ace, double *ar, double *visc,
@@ -1000,59 +1266,44 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     const float visc_wall = (float)(VRES_VISC_IS_LAMINAR(viscosity) ? C->nu_wall : C->alpha_wall);
     const int sps = viscosity == VRES_VISC_SPS && fluid_a; /* sums a's strain (vres_sph_tau_v) */
     const int dbl = shift || sps;                          /* the pairs' double-precision data are gathered too */
-    double accx = 0, accy = 0, accz = 0, arp = 0, vmax = 0, diff = 0, gcx = 0, gcy = 0, gcz = 0, divr = 0;
-    double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0; /* laminar+SPS: a's two_strain (1/s) */
-    int noshift = 0;
-    vres_sph_cands L;
+    vres_sph_sums S;
+    S.arp = S.diff = S.ax = S.ay = S.az = vres_sph_zero4();
+    S.vmax = vres_sph_fzero4();
+    S.gcx = S.gcy = S.gcz = S.divr = 0;
+    for (int k = 0; k < 6; k++) S.s[k] = 0;
+    int noshift = 0, r0 = 0; /* r0: terms a pass left for the next (vres_sph_sum_terms) */
     vres_sph_pairs Q;
     vres_sph_pairs_d D;
-    struct { /* each kept pair's terms of a's sums */
-        float arp[VRES_SPH_LIST];  /* continuity m_b v_ab . grad_a W_ab (kg/m^3/s) */
-        float rate[VRES_SPH_LIST]; /* x_ab . v_ab / (r^2 + eta2) (1/s) */
-        float ax[VRES_SPH_LIST], ay[VRES_SPH_LIST], az[VRES_SPH_LIST]; /* pressure and viscous acceleration
-                                                                          (vres_sph_pair_acc; m/s^2; ay 3D) */
-        float diff[VRES_SPH_LIST]; /* density diffusion (kg/m^3/s; 0 for a wall b) */
-        double gx[VRES_SPH_LIST], gy[VRES_SPH_LIST], gz[VRES_SPH_LIST]; /* shifting: V_b grad_a W_ab (1/m; gy 3D) */
-        double div[VRES_SPH_LIST];  /* shifting: V_b x_ab . grad_a W_ab (subtracted from div r) */
-        double s[6][VRES_SPH_LIST]; /* laminar+SPS: two_strain terms xx, xy, xz, yy, yz, zz (1/s; xy, yy, yz 3D) */
-    } T;
+    vres_sph_terms T;
     int c = 0;
     size_t b0 = m ? nb[0].begin : 0;
     while (c < m) {
-        const int nkept = vres_sph_pass(&L, St, P, C, &c, &b0, xa, ya, za, dim, dry_walls); /* 1 and 2 */
-        /* 3: their data; a wall particle a (DBC) leaves out its wall and buffer neighbours */
-        int np = 0;
-        if (fluid_a) { /* every kept neighbour is a pair: slot j is pair j, no store waits on a count */
-            for (int j = 0; j < nkept; j++)
-                vres_sph_gather(&Q, &D, j, &L, L.kept[j], St, P, C, xa, ya, za, dim, walls, float_a, shift, dbl,
-                                &noshift);
-            np = nkept;
-        } else for (int j = 0; j < nkept; j++) {
-            const size_t b = L.b[L.kept[j]];
-            const int wall_b = vres_sph_gather(&Q, &D, np, &L, L.kept[j], St, P, C, xa, ya, za, dim, walls, float_a,
-                                               shift, dbl, &noshift);
-            np += (!wall_b || vres_sph_walls_meet(walls, P->type[a], P->type[b])) &&
-                  (float_a || !vres_type_is_buffer(P->type[b])); /* nor buffer particles */
-        }
+        int np;
+#ifdef VRES_KEEP8
+        if (!D3 && fluid_a && !dbl) np = vres_sph_pass_pairs2d(&Q, St, P, C, &c, &b0, xa, za, walls); /* 1 to 3 */
+        else
+#endif
+            np = vres_sph_pass_gather(&Q, &D, a, St, P, C, &c, &b0, xa, ya, za, dim, walls, fluid_a, float_a, shift,
+                                      dbl, dry_walls, &noshift);
         /* 4: the pair terms, by the pair functions. Where vres_sph_interact skips a term, a select
            of one of its inputs makes it zero: a select of the term itself would have the compiler
            compute the term in a branch (it may not compute, in every vector lane, a floating-point
            operation that could trap and that the program does not always ask for), and the loop
            would not be vectorised. Each dot product adds x, y, z in that order, as the scalar form. */
+        float *const tarp = T.arp + r0, *const trate = T.rate + r0, *const tax = T.ax + r0, *const tay = T.ay + r0;
+        float *const taz = T.az + r0, *const tdiff = T.diff + r0; /* this pass's terms, after those carried */
 #pragma omp simd
         for (int j = 0; j < np; j++) {
-            const int b = D3 ? 0 : Q.b[j]; /* 2D: b's data by its slot */
-            const float mb = D3 ? Q.mb[j] : (float)P->mass[b], rhob = D3 ? Q.rhob[j] : P->rho[b];
-            const float vxb = D3 ? Q.vx[j] : P->vx[b], vzb = D3 ? Q.vz[j] : P->vz[b], pb = D3 ? Q.pb[j] : P->press[b];
+            const float mb = Q.mb[j], rhob = Q.rhob[j], vxb = Q.vx[j], vzb = Q.vz[j], pb = Q.pb[j];
             const float dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j];
             const float dy = D3 ? Q.dy[j] : 0.0f;
             const float r = sqrtf(r2), F = vres_sph_kernel_ff(C, kernel, r);
             const float frx = F * dx, fry = F * dy, frz = F * dz;
             const float dvx = vxa - vxb, dvz = vza - vzb, dvy = D3 ? vya - Q.vy[j] : 0.0f;
             const float inv_r2eta = 1.0f / (r2 + eta2), inv_rhob = 1.0f / rhob;
-            T.arp[j] = mb * (D3 ? dvx * frx + dvy * fry + dvz * frz : dvx * frx + dvz * frz);
+            tarp[j] = mb * (D3 ? dvx * frx + dvy * fry + dvz * frz : dvx * frx + dvz * frz);
             const float dot = D3 ? dx * dvx + dy * dvy + dz * dvz : dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
-            T.rate[j] = dot_rr2;
+            trate[j] = dot_rr2;
             const float prs = vres_sph_pair_prs(C, kernel, mb, pa, pb, inv_rhoa, inv_rhob, r, ra);
             const float vis = walls && (float_a || Q.wall[j] != 0.0f) ? visc_wall : visc_fluid; /* the pair's Visco */
             const float vc = VRES_VISC_IS_LAMINAR(viscosity)
@@ -1060,12 +1311,12 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                                                          D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz,
                                                          inv_r2eta)
                                  : vres_sph_pair_visc(C, vis, mb, rhoa, rhob, dot, dot_rr2);
-            T.ax[j] = vres_sph_pair_acc(viscosity, prs, vc, frx, dvx);
-            T.az[j] = vres_sph_pair_acc(viscosity, prs, vc, frz, dvz);
-            if (D3) T.ay[j] = vres_sph_pair_acc(viscosity, prs, vc, fry, dvy);
+            tax[j] = vres_sph_pair_acc(viscosity, prs, vc, frx, dvx);
+            taz[j] = vres_sph_pair_acc(viscosity, prs, vc, frz, dvz);
+            if (D3) tay[j] = vres_sph_pair_acc(viscosity, prs, vc, fry, dvy);
             if (ddt != VRES_DDT_NONE) { /* fluid-fluid pairs only: a wall b's mass taken as 0 */
                 const float mf = walls && Q.wall[j] != 0.0f ? 0.0f : mb;
-                T.diff[j] = vres_sph_pair_ddt(C, ddt == VRES_DDT_FOURTAKAS, mf, rhoa, rhob, inv_rhob, dx, dy, dz, r2,
+                tdiff[j] = vres_sph_pair_ddt(C, ddt == VRES_DDT_FOURTAKAS, mf, rhoa, rhob, inv_rhob, dx, dy, dz, r2,
                                               inv_r2eta, F);
             }
         }
@@ -1078,9 +1329,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                 const double frx = F * dx, fry = F * dy, frz = F * dz;
                 if (sps) { /* vres_sph_tau_v's terms, operation for operation */
                     const double svol = -(D.mb[j] * D.inv_rhob[j]);
-                    const int b = D3 ? 0 : Q.b[j];
-                    const double du = ((double)vxa - (D3 ? Q.vx[j] : P->vx[b])) * svol;
-                    const double dw = ((double)vza - (D3 ? Q.vz[j] : P->vz[b])) * svol;
+                    const double du = ((double)vxa - Q.vx[j]) * svol, dw = ((double)vza - Q.vz[j]) * svol;
                     T.s[0][j] = du * frx;
                     T.s[2][j] = du * frz + dw * frx;
                     T.s[5][j] = dw * frz;
@@ -1099,46 +1348,23 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                     T.div[j] = vol * (D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz);
                 }
             }
-        /* 5: the sums, in pair order (a wall particle a sums only its density rate, a floating
-           one its acceleration too, without density diffusion) */
-        for (int j = 0; j < np; j++) {
-            if (!float_a || !Q.buf[j]) arp += T.arp[j]; /* a floating body's density: no buffer */
-            vmax = T.rate[j] > vmax ? T.rate[j] : vmax;
-        }
-        if (fluid_a || float_a)
-            for (int j = 0; j < np; j++) {
-                accx += T.ax[j];
-                if (D3) accy += T.ay[j];
-                accz += T.az[j];
-                if (ddt != VRES_DDT_NONE && !float_a) diff += T.diff[j];
-                if (shift) {
-                    gcx += T.gx[j];
-                    if (D3) gcy += T.gy[j];
-                    gcz += T.gz[j];
-                    divr -= T.div[j];
-                }
-            }
-        if (sps)
-            for (int j = 0; j < np; j++) {
-                s0 += T.s[0][j], s2 += T.s[2][j], s5 += T.s[5][j];
-                if (D3) s1 += T.s[1][j], s3 += T.s[3][j], s4 += T.s[4][j];
-            }
+        /* 5: the sums */
+        r0 = vres_sph_sum_terms(&S, &T, r0, np, Q.buf, c >= m, fluid_a, float_a, ddt, shift, sps, dim);
     }
     if (viscosity == VRES_VISC_SPS) { /* a's stress; none for walls and floating particles */
         double *t = &P->tau[6 * a];
-        if (sps) {
-            const double st[6] = {s0, s1, s2, s3, s4, s5};
-            vres_sps_tau_from_strain(st, rhoa, C->sps_smag, C->sps_blin, t);
-        } else t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
+        if (sps) vres_sps_tau_from_strain(S.s, rhoa, C->sps_smag, C->sps_blin, t);
+        else t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
     }
     if (shift && fluid_a) {
-        shiftv[4 * a] = noshift ? NAN : gcx;
-        shiftv[4 * a + 1] = gcy;
-        shiftv[4 * a + 2] = gcz;
-        shiftv[4 * a + 3] = divr;
+        shiftv[4 * a] = noshift ? NAN : S.gcx;
+        shiftv[4 * a + 1] = S.gcy;
+        shiftv[4 * a + 2] = S.gcz;
+        shiftv[4 * a + 3] = S.divr;
     }
-    ar[a] = arp + diff;
-    visc[a] = vmax;
+    const double accx = vres_sph_total4(S.ax), accy = vres_sph_total4(S.ay), accz = vres_sph_total4(S.az);
+    ar[a] = vres_sph_total4(S.arp) + vres_sph_total4(S.diff);
+    visc[a] = vres_sph_max_of4(S.vmax);
     ace[3 * a] = fluid_a ? accx + C->g[0] : float_a ? accx : 0.0;
     ace[3 * a + 1] = fluid_a ? (D3 ? accy + C->g[1] : C->g[1]) : float_a ? accy : 0.0;
     ace[3 * a + 2] = fluid_a ? accz + C->g[2] : float_a ? accz : 0.0;
