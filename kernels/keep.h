@@ -60,15 +60,16 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_keep_within(const double *r2, i
 
 
 #if defined(__GNUC__) && !defined(__CUDACC__)
-/* The compaction eight candidates at a time (kernels/sph.h's vres_sph_pass_pairs): the lanes of
+/* The compaction eight candidates at a time (kernels/sph.h's vres_sph_pass_pairs2d): the lanes of
  * a block of candidates whose r^2 lies in [lo, hi) are moved to the front of each of the block's
  * vectors, in their order, by one permutation, and the list grows by their count. GCC's vectors
  * (AVX2's vpermps where the function is compiled for it); CUDA and other compilers keep
  * vres_keep_within. */
 #define VRES_KEEP8 1
-/* The helpers below take and return 32-byte vectors; they are always inlined, so no call passes
- * one, and GCC's note that such a call's ABI depends on AVX (-Wpsabi, which GCC gives where the
- * inlined code is emitted, up to the end of the file that includes this one) does not apply. */
+/* The helpers below take 32-byte vectors by pointer (a parameter of that size draws GCC's note on
+ * its changed ABI in every file) and return them; they are always inlined, so no call returns one,
+ * and GCC's warning that such a return's ABI depends on AVX (-Wpsabi, given where the inlined code
+ * is emitted, up to the end of the file that includes this one) does not apply. */
 #pragma GCC diagnostic ignored "-Wpsabi"
 typedef double vres_v4d __attribute__((vector_size(32)));    /* four doubles */
 typedef long long vres_v4l __attribute__((vector_size(32))); /* four 64-bit integers (a double compare's lanes) */
@@ -117,11 +118,11 @@ static const uint32_t vres_keep8_lut[256] = {
     0x5007d63u, 0x603eb18u, 0x603eb19u, 0x71f58c8u, 0x603eb1au, 0x71f58d0u, 0x71f58d1u, 0x8fac688u,
 };
 
-/* The 8-bit mask of the lanes of r0 (lanes 0..3) and r1 (lanes 4..7) with lo <= r2 < hi. */
-static inline VRES_FORCE_INLINE int vres_keep8_mask(vres_v4d r0, vres_v4d r1, double lo, double hi)
+/* The 8-bit mask of the lanes of *r0 (lanes 0..3) and *r1 (lanes 4..7) with lo <= r2 < hi. */
+static inline VRES_FORCE_INLINE int vres_keep8_mask(const vres_v4d *r0, const vres_v4d *r1, double lo, double hi)
 {
     const vres_v4l b0 = {1, 2, 4, 8}, b1 = {16, 32, 64, 128};
-    const vres_v4l in = ((r0 >= lo) & (r0 < hi) & b0) | ((r1 >= lo) & (r1 < hi) & b1);
+    const vres_v4l in = ((*r0 >= lo) & (*r0 < hi) & b0) | ((*r1 >= lo) & (*r1 < hi) & b1);
     return (int)(in[0] | in[1] | in[2] | in[3]);
 }
 
@@ -132,35 +133,49 @@ static inline VRES_FORCE_INLINE vres_v8i vres_keep8_perm(uint32_t w)
     return (vres_v8i)(((vres_v8u){w, w, w, w, w, w, w, w} >> sh) & 7u);
 }
 
-/* Eight floats: lanes 0..3 rounded from a, 4..7 from b. */
-static inline VRES_FORCE_INLINE vres_v8f vres_keep8_float(vres_v4d a, vres_v4d b)
+/* Eight floats: lanes 0..3 rounded from *a, 4..7 from *b. */
+static inline VRES_FORCE_INLINE vres_v8f vres_keep8_float(const vres_v4d *a, const vres_v4d *b)
 {
-    const vres_v4f fa = __builtin_convertvector(a, vres_v4f), fb = __builtin_convertvector(b, vres_v4f);
+    const vres_v4f fa = __builtin_convertvector(*a, vres_v4f), fb = __builtin_convertvector(*b, vres_v4f);
     return __builtin_shufflevector(fa, fb, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
-/* 1.0 in the lanes of the eight type codes t (kernels/ptype.h) that are wall particles' (the
- * codes VRES_PTYPE_FIXED to VRES_PTYPE_FLOATING: not vres_type_acts_fluid), else 0. */
-static inline VRES_FORCE_INLINE vres_v8f vres_keep8_walls(vres_v8b t)
+/* Store the lanes of *v permuted by *p at dst[0..7] (unaligned). */
+static inline VRES_FORCE_INLINE void vres_keep8_put(float *dst, const vres_v8f *v, const vres_v8i *p)
 {
-    const vres_v8u u = __builtin_convertvector(t, vres_v8u) - (unsigned)VRES_PTYPE_FIXED;
+    const vres_v8f s = __builtin_shuffle(*v, *p);
+    memcpy(dst, &s, sizeof s);
+}
+
+/* Store eight doubles, lanes 0..3 from *a and 4..7 from *b, rounded to float and permuted by *p, at
+ * dst[0..7]. */
+static inline VRES_FORCE_INLINE void vres_keep8_store_d(float *dst, const vres_v4d *a, const vres_v4d *b,
+                                                        const vres_v8i *p)
+{
+    const vres_v8f f = vres_keep8_float(a, b);
+    vres_keep8_put(dst, &f, p);
+}
+
+/* Store the eight floats src[0..7] permuted by *p at dst[0..7]. */
+static inline VRES_FORCE_INLINE void vres_keep8_store_f(float *dst, const float *src, const vres_v8i *p)
+{
+    vres_v8f f;
+    memcpy(&f, src, sizeof f);
+    vres_keep8_put(dst, &f, p);
+}
+
+/* Store, permuted by *p at dst[0..7], 1.0 for each of the eight type codes t[0..7] (kernels/ptype.h)
+ * that is a wall particle's (the codes VRES_PTYPE_FIXED to VRES_PTYPE_FLOATING: not
+ * vres_type_acts_fluid), else 0. */
+static inline VRES_FORCE_INLINE void vres_keep8_store_walls(float *dst, const uint8_t *t, const vres_v8i *p)
+{
+    vres_v8b t8;
+    memcpy(&t8, t, sizeof t8);
+    const vres_v8u u = __builtin_convertvector(t8, vres_v8u) - (unsigned)VRES_PTYPE_FIXED;
     const vres_v8i w = (vres_v8i)(u <= (unsigned)(VRES_PTYPE_FLOATING - VRES_PTYPE_FIXED));
     const vres_v8f one = {1, 1, 1, 1, 1, 1, 1, 1};
-    return (vres_v8f)(w & (vres_v8i)one);
-}
-
-/* Store the lanes of v permuted by p at dst[0..7] (unaligned). */
-static inline VRES_FORCE_INLINE void vres_keep8_store(float *dst, vres_v8f v, vres_v8i p)
-{
-    const vres_v8f s = __builtin_shuffle(v, p);
-    memcpy(dst, &s, sizeof s);
-}
-
-/* The same for eight integers. */
-static inline VRES_FORCE_INLINE void vres_keep8_store_i(int *dst, vres_v8i v, vres_v8i p)
-{
-    const vres_v8i s = __builtin_shuffle(v, p);
-    memcpy(dst, &s, sizeof s);
+    const vres_v8f f = (vres_v8f)(w & (vres_v8i)one);
+    vres_keep8_put(dst, &f, p);
 }
 #endif
 

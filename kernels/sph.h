@@ -323,10 +323,11 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_max4(vres_sph_fpart4 *mx, 
     }
 }
 
-/* The total (s0 + s1) + (s2 + s3) of the four parts s of a sum. */
-VRES_HD static inline double vres_sph_total4(vres_sph_part4 s)
+/* The total (s0 + s1) + (s2 + s3) of the four parts *s of a sum (by pointer: a 32-byte vector
+ * parameter draws GCC's note on its changed ABI, keep.h). */
+VRES_HD static inline double vres_sph_total4(const vres_sph_part4 *s)
 {
-    return (VRES_SPH_PART(s, 0) + VRES_SPH_PART(s, 1)) + (VRES_SPH_PART(s, 2) + VRES_SPH_PART(s, 3));
+    return (VRES_SPH_PART(*s, 0) + VRES_SPH_PART(*s, 1)) + (VRES_SPH_PART(*s, 2) + VRES_SPH_PART(*s, 3));
 }
 
 /* The largest of the four parts m of a maximum. */
@@ -450,8 +451,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact(size_t a, const vre
         shiftv[4 * a + 2] = gc[2];
         shiftv[4 * a + 3] = divr;
     }
-    const double accs[3] = {vres_sph_total4(acc[0]), vres_sph_total4(acc[1]), vres_sph_total4(acc[2])};
-    ar[a] = vres_sph_total4(arp) + vres_sph_total4(diff);
+    const double accs[3] = {vres_sph_total4(&acc[0]), vres_sph_total4(&acc[1]), vres_sph_total4(&acc[2])};
+    ar[a] = vres_sph_total4(&arp) + vres_sph_total4(&diff);
     visc[a] = vmax;
     ace[3 * a] = fluid_a ? accs[0] + C.g[0] : float_a ? accs[0] : 0.0;
     ace[3 * a + 1] = fluid_a ? accs[1] + C.g[1] : float_a ? accs[1] : 0.0;
@@ -1129,9 +1130,10 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S,
             S->s[0] += T->s[0][j], S->s[2] += T->s[2][j], S->s[5] += T->s[5][j];
             if (D3) S->s[1] += T->s[1][j], S->s[3] += T->s[3][j], S->s[4] += T->s[4][j];
         }
-    for (int j = ng; j < nt; j++) /* the rest leads the next pass */
-        T->arp[j - ng] = T->arp[j], T->rate[j - ng] = T->rate[j], T->ax[j - ng] = T->ax[j],
-                  T->ay[j - ng] = T->ay[j], T->az[j - ng] = T->az[j], T->diff[j - ng] = T->diff[j];
+    for (int j = ng; j < nt; j++) { /* the rest leads the next pass */
+        T->arp[j - ng] = T->arp[j], T->rate[j - ng] = T->rate[j], T->diff[j - ng] = T->diff[j];
+        T->ax[j - ng] = T->ax[j], T->ay[j - ng] = T->ay[j], T->az[j - ng] = T->az[j];
+    }
     return nt - ng;
 }
 
@@ -1177,33 +1179,28 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass_pairs2d(vres_sph_pairs
             /* vres_sph_pass' operations */
             const vres_v4d dx0 = xa - (x0 + sx), dx1 = xa - (x1 + sx), dz0 = za - (z0 + sz), dz1 = za - (z1 + sz);
             const vres_v4d r0 = dx0 * dx0 + dz0 * dz0, r1 = dx1 * dx1 + dz1 * dz1;
-            const int mask = vres_keep8_mask(r0, r1, tiny, fourh2) & ((1 << len) - 1);
+            const int mask = vres_keep8_mask(&r0, &r1, tiny, fourh2) & ((1 << len) - 1);
             if (!mask) continue;
             const uint32_t w = vres_keep8_lut[mask];
             const vres_v8i p = vres_keep8_perm(w);
-            vres_keep8_store(Q->dx + np, vres_keep8_float(dx0, dx1), p);
-            vres_keep8_store(Q->dz + np, vres_keep8_float(dz0, dz1), p);
-            vres_keep8_store(Q->r2 + np, vres_keep8_float(r0, r1), p);
+            vres_keep8_store_d(Q->dx + np, &dx0, &dx1, &p);
+            vres_keep8_store_d(Q->dz + np, &dz0, &dz1, &p);
+            vres_keep8_store_d(Q->r2 + np, &r0, &r1, &p);
             if (b0 + 8 <= P->n) { /* b's data, whose slots are contiguous too */
-                vres_v8f f;
                 vres_v4d m0, m1;
-                memcpy(&f, P->vx + b0, sizeof f), vres_keep8_store(Q->vx + np, f, p);
-                memcpy(&f, P->vz + b0, sizeof f), vres_keep8_store(Q->vz + np, f, p);
-                memcpy(&f, P->rho + b0, sizeof f), vres_keep8_store(Q->rhob + np, f, p);
-                memcpy(&f, P->press + b0, sizeof f), vres_keep8_store(Q->pb + np, f, p);
+                vres_keep8_store_f(Q->vx + np, P->vx + b0, &p);
+                vres_keep8_store_f(Q->vz + np, P->vz + b0, &p);
+                vres_keep8_store_f(Q->rhob + np, P->rho + b0, &p);
+                vres_keep8_store_f(Q->pb + np, P->press + b0, &p);
                 memcpy(&m0, P->mass + b0, sizeof m0), memcpy(&m1, P->mass + b0 + 4, sizeof m1);
-                vres_keep8_store(Q->mb + np, vres_keep8_float(m0, m1), p);
+                vres_keep8_store_d(Q->mb + np, &m0, &m1, &p);
             } else /* the block runs past the arrays' end: each kept one by its slot */
                 for (int k = 0; k < (int)(w >> 24); k++) {
                     const size_t b = b0 + ((w >> (3 * k)) & 7u);
                     Q->vx[np + k] = P->vx[b], Q->vz[np + k] = P->vz[b], Q->rhob[np + k] = P->rho[b];
                     Q->pb[np + k] = P->press[b], Q->mb[np + k] = (float)P->mass[b];
                 }
-            if (walls) {
-                vres_v8b t8;
-                memcpy(&t8, typ, sizeof t8);
-                vres_keep8_store(Q->wall + np, vres_keep8_walls(t8), p);
-            }
+            if (walls) vres_keep8_store_walls(Q->wall + np, typ, &p);
             np += (int)(w >> 24);
         }
     }
@@ -1362,8 +1359,8 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
         shiftv[4 * a + 2] = S.gcz;
         shiftv[4 * a + 3] = S.divr;
     }
-    const double accx = vres_sph_total4(S.ax), accy = vres_sph_total4(S.ay), accz = vres_sph_total4(S.az);
-    ar[a] = vres_sph_total4(S.arp) + vres_sph_total4(S.diff);
+    const double accx = vres_sph_total4(&S.ax), accy = vres_sph_total4(&S.ay), accz = vres_sph_total4(&S.az);
+    ar[a] = vres_sph_total4(&S.arp) + vres_sph_total4(&S.diff);
     visc[a] = vres_sph_max_of4(S.vmax);
     ace[3 * a] = fluid_a ? accx + C->g[0] : float_a ? accx : 0.0;
     ace[3 * a + 1] = fluid_a ? (D3 ? accy + C->g[1] : C->g[1]) : float_a ? accy : 0.0;

@@ -72,8 +72,7 @@ START_TEST(keep8_compaction_matches_keep_within)
     const double lo = 1e-20, hi = 4e-4;
     double r2[64];
     uint8_t kept[64], type[64];
-    float out[64 + 8], wall[64 + 8];
-    int slot[64 + 8];
+    float out[64 + 8], wall[64 + 8], slot[64 + 8];
     for (int rep = 0; rep < 500; rep++) {
         for (int j = 0; j < 64; j++) r2[j] = draw_r2(lo, hi), type[j] = (uint8_t)(rand() % VRES_PTYPE_COUNT);
         const int want = vres_keep_within(r2, 64, lo, hi, kept);
@@ -81,19 +80,18 @@ START_TEST(keep8_compaction_matches_keep_within)
         for (int b = 0; b < 64; b += 8) {
             vres_v4d r0, r1;
             memcpy(&r0, r2 + b, sizeof r0), memcpy(&r1, r2 + b + 4, sizeof r1);
-            const uint32_t w = vres_keep8_lut[vres_keep8_mask(r0, r1, lo, hi)];
+            const uint32_t w = vres_keep8_lut[vres_keep8_mask(&r0, &r1, lo, hi)];
             const vres_v8i p = vres_keep8_perm(w);
-            const vres_v8i lane = {0, 1, 2, 3, 4, 5, 6, 7};
-            vres_v8b t8;
-            memcpy(&t8, type + b, sizeof t8);
-            vres_keep8_store(out + np, vres_keep8_float(r0, r1), p);
-            vres_keep8_store_i(slot + np, lane + b, p);
-            vres_keep8_store(wall + np, vres_keep8_walls(t8), p);
+            float lane[8]; /* the candidates' indices, exact in float */
+            for (int k = 0; k < 8; k++) lane[k] = (float)(b + k);
+            vres_keep8_store_d(out + np, &r0, &r1, &p);
+            vres_keep8_store_f(slot + np, lane, &p);
+            vres_keep8_store_walls(wall + np, type + b, &p);
             np += (int)(w >> 24);
         }
         ck_assert_int_eq(np, want);
         for (int k = 0; k < np; k++) {
-            ck_assert_int_eq(slot[k], kept[k]);
+            ck_assert(slot[k] == (float)kept[k]);
             ck_assert(out[k] == (float)r2[kept[k]]);
             ck_assert(wall[k] == (float)!vres_type_acts_fluid(type[kept[k]]));
         }
