@@ -8,8 +8,9 @@
  * candidate, and a candidate list is mostly rejects (a 3^dim block of cells of width 2h holds
  * about three times the support's particles in 2D, five times in 3D). On the CPU the test is
  * made on four candidates at once (GCC's vectors of four doubles: a compare instruction per bound
- * with AVX2); their four flags index a table of where the kept ones go, whose four byte indices
- * are stored in one write and ns advanced by their count. The same
+ * with AVX2); their four flags, taken as a 4-bit number (vres_keep_bits4: one vmovmskpd), index a
+ * table of where the kept ones go, whose four byte indices are stored in one write and ns advanced
+ * by their count. The same
  * indices in the same order, so every sum over them comes out the same to the bit. */
 #ifndef VRES_KERNELS_KEEP_H
 #define VRES_KERNELS_KEEP_H
@@ -19,6 +20,55 @@
 
 #include "device.h"
 #include "ptype.h"
+
+#if defined(__GNUC__) && !defined(__CUDACC__)
+/* The helpers below take 32-byte vectors by pointer (a parameter of that size draws GCC's note on
+ * its changed ABI in every file) and return them; they are always inlined, so no call returns one,
+ * and GCC's warning that such a return's ABI depends on AVX (-Wpsabi, given where the inlined code
+ * is emitted, up to the end of the file that includes this one) does not apply. */
+#pragma GCC diagnostic ignored "-Wpsabi"
+typedef double vres_v4d __attribute__((vector_size(32)));    /* four doubles */
+typedef long long vres_v4l __attribute__((vector_size(32))); /* four 64-bit integers (a double compare's lanes) */
+typedef float vres_v4f __attribute__((vector_size(16)));     /* four floats */
+typedef int vres_v4i __attribute__((vector_size(16)));       /* four 32-bit integers (a float compare's lanes) */
+typedef float vres_v8f __attribute__((vector_size(32)));     /* eight floats */
+typedef int vres_v8i __attribute__((vector_size(32)));       /* eight 32-bit integers */
+typedef unsigned vres_v8u __attribute__((vector_size(32)));  /* eight 32-bit unsigned integers */
+typedef uint8_t vres_v8b __attribute__((vector_size(8)));    /* eight bytes */
+
+/* The 4-bit mask of a compare's lanes *c (lane i all ones: bit i), in portable vector code:
+ * each lane ANDed with its bit, the four ORed (eight instructions or so with AVX2). */
+static inline VRES_FORCE_INLINE int vres_keep_bits4_any(const vres_v4l *c)
+{
+    const vres_v4l bit = {1, 2, 4, 8};
+    const vres_v4l in = *c & bit;
+    return (int)(in[0] | in[1] | in[2] | in[3]);
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+/* vres_keep_bits4_any in one instruction, AVX's vmovmskpd (the sign bit of each lane). Compiled
+ * for AVX whatever the file's target: it is inlined into the AVX2 clones of the interaction loops
+ * (device.h's VRES_CLONES); elsewhere it is a call, which vres_keep_bits4 makes only where the CPU
+ * has AVX. GCC has no portable form that it turns into this instruction. */
+__attribute__((target("avx"))) static inline int vres_keep_bits4_avx(const vres_v4l *c)
+{
+    return _mm256_movemask_pd((__m256d)*c);
+}
+#define VRES_KEEP_MOVMSK 1
+#endif
+
+/* The 4-bit mask of a compare's lanes *c: vmovmskpd where the CPU has AVX (the test is of a
+ * flag the program sets once at its start, the same every time: no misprediction), else
+ * vres_keep_bits4_any. Both give the same bits (tests/lib/test_keep.c). */
+static inline VRES_FORCE_INLINE int vres_keep_bits4(const vres_v4l *c)
+{
+#ifdef VRES_KEEP_MOVMSK
+    if (__builtin_cpu_supports("avx")) return vres_keep_bits4_avx(c);
+#endif
+    return vres_keep_bits4_any(c);
+}
+#endif
 
 /* kept[0, return) = the j < n (n <= 252) with lo <= r2[j] < hi, ascending. kept must have room
  * for n entries (the groups of four write at most up to kept[n - 1]). */
@@ -35,15 +85,12 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_keep_within(const double *r2, i
                                        {3, 0, 0, 0}, {0, 3, 0, 0}, {1, 3, 0, 0}, {0, 1, 3, 0},
                                        {2, 3, 0, 0}, {0, 2, 3, 0}, {1, 2, 3, 0}, {0, 1, 2, 3}};
     static const uint8_t cnt[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
-    typedef double v4d __attribute__((vector_size(32)));    /* four doubles */
-    typedef long long v4l __attribute__((vector_size(32))); /* four 64-bit integers: a compare's lanes */
-    const v4d vlo = {lo, lo, lo, lo}, vhi = {hi, hi, hi, hi};
-    const v4l bit = {1, 2, 4, 8};
+    const vres_v4d vlo = {lo, lo, lo, lo}, vhi = {hi, hi, hi, hi};
     for (; j + 4 <= n; j += 4) {
-        v4d v;
+        vres_v4d v;
         memcpy(&v, r2 + j, sizeof v);
-        const v4l in = (v >= vlo) & (v < vhi) & bit; /* lane i: 2^i where kept, else 0 */
-        const int m = (int)(in[0] | in[1] | in[2] | in[3]);
+        const vres_v4l in = (v >= vlo) & (v < vhi); /* lane i all ones where kept */
+        const int m = vres_keep_bits4(&in);
         uint32_t w;
         memcpy(&w, lut[m], 4);
         w += 0x01010101u * (uint32_t)j;
@@ -66,19 +113,6 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_keep_within(const double *r2, i
  * (AVX2's vpermps where the function is compiled for it); CUDA and other compilers keep
  * vres_keep_within. */
 #define VRES_KEEP8 1
-/* The helpers below take 32-byte vectors by pointer (a parameter of that size draws GCC's note on
- * its changed ABI in every file) and return them; they are always inlined, so no call returns one,
- * and GCC's warning that such a return's ABI depends on AVX (-Wpsabi, given where the inlined code
- * is emitted, up to the end of the file that includes this one) does not apply. */
-#pragma GCC diagnostic ignored "-Wpsabi"
-typedef double vres_v4d __attribute__((vector_size(32)));    /* four doubles */
-typedef long long vres_v4l __attribute__((vector_size(32))); /* four 64-bit integers (a double compare's lanes) */
-typedef float vres_v4f __attribute__((vector_size(16)));     /* four floats */
-typedef int vres_v4i __attribute__((vector_size(16)));       /* four 32-bit integers (a float compare's lanes) */
-typedef float vres_v8f __attribute__((vector_size(32)));     /* eight floats */
-typedef int vres_v8i __attribute__((vector_size(32)));       /* eight 32-bit integers */
-typedef unsigned vres_v8u __attribute__((vector_size(32)));  /* eight 32-bit unsigned integers */
-typedef uint8_t vres_v8b __attribute__((vector_size(8)));    /* eight bytes */
 
 /* vres_keep8_lut[m] for an 8-bit mask m: bits 3k..3k+2 hold the lane (0..7) of the k-th set bit of
  * m from the lowest, bits 24..27 how many bits m has; unused positions 0 (tests/lib/test_keep.c
@@ -121,9 +155,8 @@ static const uint32_t vres_keep8_lut[256] = {
 /* The 8-bit mask of the lanes of *r0 (lanes 0..3) and *r1 (lanes 4..7) with lo <= r2 < hi. */
 static inline VRES_FORCE_INLINE int vres_keep8_mask(const vres_v4d *r0, const vres_v4d *r1, double lo, double hi)
 {
-    const vres_v4l b0 = {1, 2, 4, 8}, b1 = {16, 32, 64, 128};
-    const vres_v4l in = ((*r0 >= lo) & (*r0 < hi) & b0) | ((*r1 >= lo) & (*r1 < hi) & b1);
-    return (int)(in[0] | in[1] | in[2] | in[3]);
+    const vres_v4l in0 = (*r0 >= lo) & (*r0 < hi), in1 = (*r1 >= lo) & (*r1 < hi);
+    return vres_keep_bits4(&in0) | vres_keep_bits4(&in1) << 4;
 }
 
 /* The permutation of vres_keep8_lut's entry w: lane k takes lane (w >> 3k) & 7, the k-th kept. */

@@ -46,6 +46,24 @@ START_TEST(keep_within_matches_definition)
 }
 END_TEST
 
+#if defined(__GNUC__) && !defined(__CUDACC__)
+/* vres_keep_bits4 (vmovmskpd where the CPU has AVX) and vres_keep_bits4_any (portable) give bit
+ * i for each all-ones lane i of a compare, for all 16 patterns, and as compares make them. */
+START_TEST(keep_bits4_match_definition)
+{
+    for (int m = 0; m < 16; m++) {
+        const vres_v4l c = {m & 1 ? -1 : 0, m & 2 ? -1 : 0, m & 4 ? -1 : 0, m & 8 ? -1 : 0};
+        ck_assert_int_eq(vres_keep_bits4(&c), m);
+        ck_assert_int_eq(vres_keep_bits4_any(&c), m);
+        const vres_v4d r = {m & 1 ? 1.0 : 3.0, m & 2 ? 1.0 : 3.0, m & 4 ? 1.0 : 3.0, m & 8 ? 1.0 : 3.0};
+        const vres_v4l in = r < 2.0;
+        ck_assert_int_eq(vres_keep_bits4(&in), m);
+        ck_assert_int_eq(vres_keep_bits4_any(&in), m);
+    }
+}
+END_TEST
+#endif
+
 #ifdef VRES_KEEP8
 
 /* Each entry of vres_keep8_lut holds the lanes of its mask's set bits in order, three bits each,
@@ -105,6 +123,9 @@ int main(void)
     Suite *s = suite_create("keep");
     TCase *tc = tcase_create("keep");
     tcase_add_test(tc, keep_within_matches_definition);
+#if defined(__GNUC__) && !defined(__CUDACC__)
+    tcase_add_test(tc, keep_bits4_match_definition);
+#endif
 #ifdef VRES_KEEP8
     tcase_add_test(tc, keep8_table_matches_definition);
     tcase_add_test(tc, keep8_compaction_matches_keep_within);
