@@ -107,7 +107,7 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_keep_within(const double *r2, i
 
 
 #if defined(__GNUC__) && !defined(__CUDACC__)
-/* The compaction eight candidates at a time (kernels/sph.h's vres_sph_pass_pairs2d): the lanes of
+/* The compaction eight candidates at a time (kernels/sph.h's vres_sph_pass_pairs8): the lanes of
  * a block of candidates whose r^2 lies in [lo, hi) are moved to the front of each of the block's
  * vectors, in their order, by one permutation, and the list grows by their count. GCC's vectors
  * (AVX2's vpermps where the function is compiled for it); CUDA and other compilers keep

@@ -638,17 +638,17 @@ VRES_SPH_SHIFT_VARIANTS(vres_sph_cubic_shift_laminar_, VRES_VISC_LAMINAR, VRES_K
  * is particle s). The positions split by axis (vres_sph_split_cpu; x, z in 2D, y NULL there), so
  * that the neighbour loop's distance pass streams whole vectors of one coordinate (in 3D that
  * split made the loop 14% faster than reading the interleaved positions, for 24 bytes per
- * particle). The velocities, read only for the kept neighbours: split too in 2D (element b at
- * [b]), the domain's own interleaved array in 3D (vx = vel, vy = vel + 1, vz = vel + 2, element b
- * at [3 b]: VRES_SPH_VSTRIDE). The reciprocal density computed once per particle, not once per
- * pair. */
+ * particle). The velocities split by axis too (12 bytes per particle; the eight-wide pass of
+ * vres_sph_pass_pairs8 then moves eight neighbours' of one axis with one permutation, where the
+ * interleaved ones would be gathered one by one). The reciprocal density computed once per
+ * particle, not once per pair. */
 typedef struct vres_sph_arrays {
     const double *x;       /* [n] x positions (m) */
     const double *y;       /* [n] y positions (m); NULL in 2D */
     const double *z;       /* [n] z positions (m) */
-    const float *vx;       /* x velocities (m/s), element b at [b VRES_SPH_VSTRIDE(dim)] */
-    const float *vy;       /* y velocities (m/s), the same; NULL in 2D */
-    const float *vz;       /* z velocities (m/s), the same */
+    const float *vx;       /* [n] x velocities (m/s) */
+    const float *vy;       /* [n] y velocities (m/s); NULL in 2D */
+    const float *vz;       /* [n] z velocities (m/s) */
     const float *rho;      /* [n] densities (kg/m^3) */
     const float *press;    /* [n] pressures (Pa) */
     const double *inv_rho; /* [n] 1/rho, exactly 1.0 / (double)rho (m^3/kg) */
@@ -677,45 +677,44 @@ static inline void vres_sph_fluid_counts(size_t n, const uint8_t *type, uint32_t
     for (size_t s = 0; s < n; s++) nfl[s] = k += (uint32_t)vres_type_acts_fluid(type[s]);
 }
 
-/* The distance between consecutive elements of vres_sph_arrays' velocities in dimension dim: 1
- * (2D, split) or 3 (3D, interleaved). */
-#define VRES_SPH_VSTRIDE(dim) ((dim) == 2 ? 1 : 3)
-
 /* The cell-wise interaction's arrays of particle i of n (vres_sph_arrays): the positions split
- * by axis into xs (2D: x then z, [2n]; 3D: x, y, z, [3n]) (m), in 2D the x then z velocities
- * into v2d [2n] (m/s; unused in 3D), and 1 / rho into inv_rho [n] (m^3/kg). */
+ * by axis into xs and the velocities into vs (2D: x then z, [2n]; 3D: x, y, z, [3n]) (m, m/s),
+ * and 1 / rho into inv_rho [n] (m^3/kg). */
 VRES_HD static inline void vres_sph_split_one(size_t i, size_t n, int dim, const double *pos, const float *vel,
-                                              const float *rho, double *xs, float *v2d, double *inv_rho)
+                                              const float *rho, double *xs, float *vs, double *inv_rho)
 {
     if (dim == 2) {
         xs[i] = pos[3 * i], xs[n + i] = pos[3 * i + 2];
-        v2d[i] = vel[3 * i], v2d[n + i] = vel[3 * i + 2];
-    } else xs[i] = pos[3 * i], xs[n + i] = pos[3 * i + 1], xs[2 * n + i] = pos[3 * i + 2];
+        vs[i] = vel[3 * i], vs[n + i] = vel[3 * i + 2];
+    } else {
+        xs[i] = pos[3 * i], xs[n + i] = pos[3 * i + 1], xs[2 * n + i] = pos[3 * i + 2];
+        vs[i] = vel[3 * i], vs[n + i] = vel[3 * i + 1], vs[2 * n + i] = vel[3 * i + 2];
+    }
     inv_rho[i] = 1.0 / rho[i];
 }
 
-/* vres_sph_split_cpu / _cuda (n, np, dim, pos, vel, rho, xs, v2d, inv_rho): np is the count the
+/* vres_sph_split_cpu / _cuda (n, np, dim, pos, vel, rho, xs, vs, inv_rho): np is the count the
  * arrays are split by (the n of vres_sph_split_one). */
 VRES_PARTICLE_LOOP(vres_sph_split, vres_sph_split_one,
                    (size_t np, int dim, const double *pos, const float *vel, const float *rho, double *xs,
-                    float *v2d, double *inv_rho),
-                   (np, dim, pos, vel, rho, xs, v2d, inv_rho))
+                    float *vs, double *inv_rho),
+                   (np, dim, pos, vel, rho, xs, vs, inv_rho))
 
 /* The arrays vres_sph_interact_v reads for a domain of n particles in dimension dim: the split
- * positions xs (vres_sph_split_one), the 2D split velocities v2d [2n] or, in 3D, the interleaved
- * vel [3n]; rho, press, inv_rho, mass and type [n] (units as vres_sph_arrays). */
-VRES_HD static inline vres_sph_arrays vres_sph_arrays_make(size_t n, int dim, const double *xs, const float *vel,
-                                                           const float *v2d, const float *rho, const float *press,
+ * positions xs and velocities vs (vres_sph_split_one); rho, press, inv_rho, mass and type [n]
+ * (units as vres_sph_arrays). */
+VRES_HD static inline vres_sph_arrays vres_sph_arrays_make(size_t n, int dim, const double *xs, const float *vs,
+                                                           const float *rho, const float *press,
                                                            const double *inv_rho, const double *mass,
                                                            const uint8_t *type)
 {
     vres_sph_arrays P;
     if (dim == 2) {
         P.x = xs, P.y = NULL, P.z = xs + n;
-        P.vx = v2d, P.vy = NULL, P.vz = v2d + n;
+        P.vx = vs, P.vy = NULL, P.vz = vs + n;
     } else {
         P.x = xs, P.y = xs + n, P.z = xs + 2 * n;
-        P.vx = vel, P.vy = vel + 1, P.vz = vel + 2;
+        P.vx = vs, P.vy = vs + n, P.vz = vs + 2 * n;
     }
     P.rho = rho, P.press = press, P.inv_rho = inv_rho, P.mass = mass, P.type = type, P.n = n;
     P.tau = NULL;
@@ -843,14 +842,13 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_gather(vres_sph_pairs *Q, v
                                                             const int float_a, const int shift, const int dbl,
                                                             int *noshift)
 {
-    const int SV = VRES_SPH_VSTRIDE(dim);
     const size_t b = L->b[i];
     const int wall_b = walls && !vres_type_acts_fluid(P->type[b]);
     double dx, dy, dz;
     vres_sph_cand_d(L, St, P, i, xa, ya, za, dim, &dx, &dy, &dz);
     Q->dx[k] = (float)dx, Q->dy[k] = (float)dy, Q->dz[k] = (float)dz, Q->r2[k] = (float)L->r2[i];
-    Q->vx[k] = P->vx[b * SV], Q->vz[k] = P->vz[b * SV];
-    if (dim == 3) Q->vy[k] = P->vy[b * SV];
+    Q->vx[k] = P->vx[b], Q->vz[k] = P->vz[b];
+    if (dim == 3) Q->vy[k] = P->vy[b];
     Q->mb[k] = (float)P->mass[b], Q->rhob[k] = P->rho[b], Q->pb[k] = P->press[b];
     if (dbl) {
         D->dx[k] = dx, D->dy[k] = dy, D->dz[k] = dz, D->r2[k] = L->r2[i];
@@ -985,9 +983,9 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres
         t[0] = t[1] = t[2] = t[3] = t[4] = t[5] = 0.0;
         return;
     }
-    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3;
+    const int D3 = dim == 3;
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
-    const double vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0, vza = P->vz[a * SV];
+    const double vxa = P->vx[a], vya = D3 ? P->vy[a] : 0.0, vza = P->vz[a];
     double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0;
     vres_sph_cands L;
     struct { /* the kept pairs: what the terms need of b, then the terms */
@@ -1005,8 +1003,8 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_tau_v(size_t a, const vres
             const size_t b = L.b[i];
             vres_sph_cand_d(&L, St, P, i, xa, ya, za, dim, &Q.dx[j], &Q.dy[j], &Q.dz[j]);
             Q.r2[j] = L.r2[i];
-            Q.vx[j] = P->vx[b * SV], Q.vz[j] = P->vz[b * SV];
-            if (D3) Q.vy[j] = P->vy[b * SV];
+            Q.vx[j] = P->vx[b], Q.vz[j] = P->vz[b];
+            if (D3) Q.vy[j] = P->vy[b];
             Q.m[j] = P->mass[b], Q.ir[j] = P->inv_rho[b];
         }
 #pragma omp simd
@@ -1138,8 +1136,8 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S,
 }
 
 #ifdef VRES_KEEP8
-/* Steps 1 to 3 of vres_sph_interact_v at once for a fluid particle a at (xa, za) (m) in 2D, without
- * the shifting and SPS terms: the next pass of its pairs in the ranges of its stencil St (from
+/* Steps 1 to 3 of vres_sph_interact_v at once for a fluid particle a at (xa, ya, za) (m; ya unused in
+ * 2D) in dimension dim, without the shifting and SPS terms: the next pass of its pairs in the ranges of its stencil St (from
  * range *cp at slot *b0p on, both advanced past the pass; rows out of reach passed over whole),
  * eight candidates at a time: their offsets and distances in double, the lanes inside the support
  * (a itself out) moved to the front (vres_keep8_mask, vres_keep8_perm) and stored at the end of Q's
@@ -1147,49 +1145,59 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S,
  * contiguous as the positions) and, with walls, its wall flag. The same pairs in the same order,
  * with the same bits, as vres_sph_pass, vres_keep_within and vres_sph_gather give; a pass stops
  * when Q has no room left for a block. Returns how many pairs it stored. */
-VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass_pairs2d(vres_sph_pairs *Q, const vres_sph_stencil *St,
-                                                                  const vres_sph_arrays *P, const vres_sph_consts *C,
-                                                                  int *cp, size_t *b0p, double xa, double za,
-                                                                  const int walls)
+VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass_pairs8(vres_sph_pairs *Q, const vres_sph_stencil *St,
+                                                                 const vres_sph_arrays *P, const vres_sph_consts *C,
+                                                                 int *cp, size_t *b0p, double xa, double ya,
+                                                                 double za, const int walls, const int dim)
 {
-    const int m = St->m;
+    const int m = St->m, D3 = dim == 3;
     const vres_cell_range *nb = St->nb;
     const double fourh2 = C->fourh2, tiny = 1e-18 * C->fourh2, far2 = fourh2 * (1 + 1e-6);
     int c = *cp, np = 0;
     size_t b0 = *b0p;
     for (; c < m; c++, b0 = c < m ? nb[c].begin : 0) {
-        if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, 0.0, za, far2)) continue; /* a row out of reach */
-        const double sx = nb[c].shift[0], sz = nb[c].shift[2];
+        if (b0 == nb[c].begin && !vres_sph_row_reaches(St, c, ya, za, far2)) continue; /* a row out of reach */
+        const double sx = nb[c].shift[0], sy = nb[c].shift[1], sz = nb[c].shift[2];
         const size_t e = nb[c].end;
         for (; b0 < e; b0 += 8) {
             if (np > VRES_SPH_LIST - 8) goto full;
-            const double *xb = P->x + b0, *zb = P->z + b0;
+            const double *xb = P->x + b0, *yb = D3 ? P->y + b0 : NULL, *zb = P->z + b0;
             const uint8_t *typ = P->type + b0;
             const int len = e - b0 < 8 ? (int)(e - b0) : 8; /* the range's slots in this block */
-            double tx[8], tz[8]; /* a block that runs past the arrays' end: copied, the rest padded */
+            double tx[8], ty[8], tz[8]; /* a block that runs past the arrays' end: copied, the rest padded */
             uint8_t tt[8];
             if (b0 + 8 > P->n) {
                 for (int j = 0; j < 8; j++) tx[j] = j < len ? xb[j] : xa, tz[j] = j < len ? zb[j] : za;
+                if (D3)
+                    for (int j = 0; j < 8; j++) ty[j] = j < len ? yb[j] : ya;
                 for (int j = 0; j < 8; j++) tt[j] = j < len ? typ[j] : 0;
-                xb = tx, zb = tz, typ = tt;
+                xb = tx, yb = D3 ? ty : NULL, zb = tz, typ = tt;
             }
             vres_v4d x0, x1, z0, z1;
             memcpy(&x0, xb, sizeof x0), memcpy(&x1, xb + 4, sizeof x1);
             memcpy(&z0, zb, sizeof z0), memcpy(&z1, zb + 4, sizeof z1);
             /* vres_sph_pass' operations */
             const vres_v4d dx0 = xa - (x0 + sx), dx1 = xa - (x1 + sx), dz0 = za - (z0 + sz), dz1 = za - (z1 + sz);
-            const vres_v4d r0 = dx0 * dx0 + dz0 * dz0, r1 = dx1 * dx1 + dz1 * dz1;
+            vres_v4d dy0 = {0, 0, 0, 0}, dy1 = dy0, r0, r1;
+            if (D3) {
+                vres_v4d y0, y1;
+                memcpy(&y0, yb, sizeof y0), memcpy(&y1, yb + 4, sizeof y1);
+                dy0 = ya - (y0 + sy), dy1 = ya - (y1 + sy);
+                r0 = dx0 * dx0 + dy0 * dy0 + dz0 * dz0, r1 = dx1 * dx1 + dy1 * dy1 + dz1 * dz1;
+            } else r0 = dx0 * dx0 + dz0 * dz0, r1 = dx1 * dx1 + dz1 * dz1;
             const int mask = vres_keep8_mask(&r0, &r1, tiny, fourh2) & ((1 << len) - 1);
             if (!mask) continue;
             const uint32_t w = vres_keep8_lut[mask];
             const vres_v8i p = vres_keep8_perm(w);
             vres_keep8_store_d(Q->dx + np, &dx0, &dx1, &p);
             vres_keep8_store_d(Q->dz + np, &dz0, &dz1, &p);
+            if (D3) vres_keep8_store_d(Q->dy + np, &dy0, &dy1, &p);
             vres_keep8_store_d(Q->r2 + np, &r0, &r1, &p);
             if (b0 + 8 <= P->n) { /* b's data, whose slots are contiguous too */
                 vres_v4d m0, m1;
                 vres_keep8_store_f(Q->vx + np, P->vx + b0, &p);
                 vres_keep8_store_f(Q->vz + np, P->vz + b0, &p);
+                if (D3) vres_keep8_store_f(Q->vy + np, P->vy + b0, &p);
                 vres_keep8_store_f(Q->rhob + np, P->rho + b0, &p);
                 vres_keep8_store_f(Q->pb + np, P->press + b0, &p);
                 memcpy(&m0, P->mass + b0, sizeof m0), memcpy(&m1, P->mass + b0 + 4, sizeof m1);
@@ -1199,6 +1207,7 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_pass_pairs2d(vres_sph_pairs
                     const size_t b = b0 + ((w >> (3 * k)) & 7u);
                     Q->vx[np + k] = P->vx[b], Q->vz[np + k] = P->vz[b], Q->rhob[np + k] = P->rho[b];
                     Q->pb[np + k] = P->press[b], Q->mb[np + k] = (float)P->mass[b];
+                    if (D3) Q->vy[np + k] = P->vy[b];
                 }
             if (walls) vres_keep8_store_walls(Q->wall + np, typ, &p);
             np += (int)(w >> 24);
@@ -1221,9 +1230,9 @@ full:
  *   2. keeps those inside the support, without a branch (the cells hold about three (2D) to
  *      six (3D) times as many as the kernel reaches, and a per-candidate branch is mispredicted
  *      about as often as it is taken);
- *   3. gathers what the pair physics needs of each kept neighbour into arrays Q; in 2D a fluid
+ *   3. gathers what the pair physics needs of each kept neighbour into arrays Q; a fluid
  *      particle without shifting or SPS does steps 1 to 3 at once, eight candidates at a time
- *      (vres_sph_pass_pairs2d);
+ *      (vres_sph_pass_pairs8);
  *   4. computes every pair's terms over those arrays into arrays T, without a branch (vector
  *      instructions again: selects where vres_sph_interact branches);
  *   5. adds the terms: the single-precision ones in four parts by pair ordinal, four at a time
@@ -1240,7 +1249,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
                                                                const int viscosity, const int kernel,
                                                                const int shift, const int dim)
 {
-    const int SV = VRES_SPH_VSTRIDE(dim), D3 = dim == 3, m = St->m;
+    const int D3 = dim == 3, m = St->m;
     const vres_cell_range *nb = St->nb;
     if (vres_type_is_imposed(P->type[a])) {
         vres_sph_no_rates(a, ace, ar, visc, shift, shiftv);
@@ -1254,7 +1263,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
        it passes over the rows without any (most walls of a dam break are dry), which changes no sum */
     const int dry_walls = walls == VRES_WALLS_DBC && !fluid_a && P->nfl;
     const double xa = P->x[a], ya = D3 ? P->y[a] : 0.0, za = P->z[a];
-    const float vxa = P->vx[a * SV], vya = D3 ? P->vy[a * SV] : 0.0f, vza = P->vz[a * SV];
+    const float vxa = P->vx[a], vya = D3 ? P->vy[a] : 0.0f, vza = P->vz[a];
     const float rhoa = P->rho[a], inv_rhoa = 1.0f / rhoa, pa = P->press[a];
     const float eta2 = (float)C->eta2;
     const float ra = kernel == VRES_KERNEL_CUBIC ? vres_cubic_tensile_rf(pa, inv_rhoa) : 0.0f; /* a's tensile part */
@@ -1277,7 +1286,7 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
     while (c < m) {
         int np;
 #ifdef VRES_KEEP8
-        if (!D3 && fluid_a && !dbl) np = vres_sph_pass_pairs2d(&Q, St, P, C, &c, &b0, xa, za, walls); /* 1 to 3 */
+        if (fluid_a && !dbl) np = vres_sph_pass_pairs8(&Q, St, P, C, &c, &b0, xa, ya, za, walls, dim); /* 1 to 3 */
         else
 #endif
             np = vres_sph_pass_gather(&Q, &D, a, St, P, C, &c, &b0, xa, ya, za, dim, walls, fluid_a, float_a, shift,

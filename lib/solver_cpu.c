@@ -44,7 +44,7 @@ typedef struct cpu_ctx {
     float *rhom1;         /* [n] Verlet: densities of the previous step (kg/m^3) */
     double *shiftv;       /* [4n] shifting: grad C and div r, then the displacement (m); NULL without shifting */
     double *xs;           /* [dim n] positions split by axis for the interaction: x then z (2D), x, y, z (3D) (m) */
-    float *v2d;           /* [2n] 2D: x then z velocities (m/s); NULL in 3D */
+    float *vs;            /* [dim n] velocities split by axis: x, (y,) z (m/s) */
     double *inv_rho;      /* [n] 1/density of each particle (m^3/kg), for the interaction */
     uint32_t *nfl;        /* [n] DBC walls none of which floats: how many of slots 0..s act as fluid (vres_sph_arrays'
                              nfl), so that dry walls pass over their rows; NULL for other scenes */
@@ -158,9 +158,9 @@ static double cpu_forces(vres_backend *b, int shift, double *visc_max)
     cpu_mdbc(b);
     vres_eos_loop_cpu(d->n, d->rho, d->press, c->rho0, c->B, c->gamma);
     const size_t n = d->n;
-    vres_sph_split_cpu(n, n, c->dim, d->pos, d->vel, d->rho, x->xs, x->v2d, x->inv_rho);
-    vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, d->vel, x->v2d, d->rho, d->press, x->inv_rho,
-                                             d->mass_p, d->type);
+    vres_sph_split_cpu(n, n, c->dim, d->pos, d->vel, d->rho, x->xs, x->vs, x->inv_rho);
+    vres_sph_arrays P = vres_sph_arrays_make(n, c->dim, x->xs, x->vs, d->rho, d->press, x->inv_rho, d->mass_p,
+                                             d->type);
     P.tau = x->tau; /* laminar+SPS: the interaction writes the stress there */
     if (x->nfl) vres_sph_fluid_counts(n, d->type, x->nfl), P.nfl = x->nfl;
     if (c->general)
@@ -435,9 +435,9 @@ static void cpu_work_setup(cpu_ctx *x, const run_cfg *c, const run_dom *dc)
     add_work(x, &x->ar, sizeof *x->ar, VRES_WORK_SCRATCH, -1);
     add_work(x, &x->visc, sizeof *x->visc, VRES_WORK_SCRATCH, -1);
     if (c->shift) add_work(x, &x->shiftv, 4 * sizeof *x->shiftv, VRES_WORK_SCRATCH, -1);
-    /* split by axis: xs holds n x, (n y,) n z values, so dim per particle */
+    /* split by axis: xs and vs hold n x, (n y,) n z values, so dim per particle */
     add_work(x, &x->xs, (size_t)c->dim * sizeof *x->xs, VRES_WORK_SCRATCH, -1);
-    if (c->dim == 2) add_work(x, &x->v2d, 2 * sizeof *x->v2d, VRES_WORK_SCRATCH, -1);
+    add_work(x, &x->vs, (size_t)c->dim * sizeof *x->vs, VRES_WORK_SCRATCH, -1);
     add_work(x, &x->inv_rho, sizeof *x->inv_rho, VRES_WORK_SCRATCH, -1);
     if (vres_run_pick(c, dc).walls == VRES_WALLS_DBC) add_work(x, &x->nfl, sizeof *x->nfl, VRES_WORK_SCRATCH, -1);
     if (c->visco_kind == VRES_VISC_SPS) add_work(x, &x->tau, 6 * sizeof *x->tau, VRES_WORK_SCRATCH, -1);

@@ -282,7 +282,7 @@ static double cu_forces(vres_backend *b, int shift, double *visc_max)
     if (!launched(x, "EOS")) return 0;
     if (c->dim == 2) {
         vres_sph_split_cuda(n, n, 2, x->dev.pos, x->dev.vel, x->dev.rho, x->x2d, x->v2d, x->inv_rho);
-        vres_sph_arrays P = vres_sph_arrays_make(n, 2, x->x2d, x->dev.vel, x->v2d, x->dev.rho, x->dev.press,
+        vres_sph_arrays P = vres_sph_arrays_make(n, 2, x->x2d, x->v2d, x->dev.rho, x->dev.press,
                                                  x->inv_rho, x->dev.mass_p, x->dev.type);
         P.tau = x->tau; /* laminar+SPS: the interaction writes the stress there */
         if (!launched(x, "2D split arrays") ||

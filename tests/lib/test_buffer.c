@@ -148,7 +148,7 @@ static rates interact_walls(int k, vres_domain *d, const vres_cells *g, const vr
     for (size_t i = 0; i < n; i++)
         x[i] = d->pos[3 * i], x[n + i] = d->pos[3 * i + 2], v[i] = d->vel[3 * i], v[n + i] = d->vel[3 * i + 2],
         ir[i] = 1.0 / d->rho[i];
-    vres_sph_arrays P = vres_sph_arrays_make(n, 2, x, d->vel, v, d->rho, d->press, ir, d->mass_p, d->type);
+    vres_sph_arrays P = vres_sph_arrays_make(n, 2, x, v, d->rho, d->press, ir, d->mass_p, d->type);
     if (k == 0) vres_sph_dbc_molteni_cpu(n, g, d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, *C, r.ace, r.ar,
                                          r.visc);
     else if (k == 1) vres_sph2d_dbc_molteni_cpu(g->ncells + 1, g, &P, C, r.ace, r.ar, r.visc, NULL);
@@ -288,7 +288,7 @@ START_TEST(buffer_gets_fluid_shifting_sums)
                 for (size_t i = 0; i < n; i++)
                     x[i] = d->pos[3 * i], x[n + i] = d->pos[3 * i + 2], v[i] = d->vel[3 * i],
                     v[n + i] = d->vel[3 * i + 2], ir[i] = 1.0 / d->rho[i];
-                vres_sph_arrays P = vres_sph_arrays_make(n, 2, x, d->vel, v, d->rho, d->press, ir, d->mass_p, d->type);
+                vres_sph_arrays P = vres_sph_arrays_make(n, 2, x, v, d->rho, d->press, ir, d->mass_p, d->type);
                 if (k == 0)
                     vres_sph_shift_dbc_molteni_cpu(n, &g[t], d->pos, d->vel, d->rho, d->press, d->mass_p, d->type, C,
                                                    ace[t], ar[t], vi[t], sv[t]);

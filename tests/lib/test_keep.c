@@ -1,5 +1,5 @@
 /* Unit tests of kernels/keep.h: the compaction of a pass's candidates, four at a time
- * (vres_keep_within) and eight at a time (vres_keep8_*, kernels/sph.h's vres_sph_pass_pairs2d),
+ * (vres_keep_within) and eight at a time (vres_keep8_*, kernels/sph.h's vres_sph_pass_pairs8),
  * against their definition: the candidates with lo <= r2 < hi, in their order. */
 #include <check.h>
 #include <stdint.h>

@@ -309,7 +309,7 @@ START_TEST(periodic_lattice_has_no_edges)
 END_TEST
 
 /* The 2D interaction (vres_sph2d_*: split arrays, merged row ranges, branch-free candidate
- * filter, in 2D a fluid particle's pairs found eight candidates at a time) adds the same terms in
+ * filter, a fluid particle's pairs found eight candidates at a time) adds the same terms in
  * the same order as the 3D per-particle one, so on a 2D particle set (a jittered block of fluid
  * with wall particles below, random velocities and densities) every variant, with shifting and
  * without, and the general cell-wise loop give bit for bit the per-particle loop's rates:
@@ -348,7 +348,7 @@ static void check_2d_equals_3d(vres_sph_consts C, const int per[3], int nx)
     for (size_t i = 0; i < n; i++)
         x[i] = d.pos[3 * i], x[n + i] = d.pos[3 * i + 2], v[i] = d.vel[3 * i], v[n + i] = d.vel[3 * i + 2],
         ir[i] = 1.0 / d.rho[i];
-    vres_sph_arrays P = vres_sph_arrays_make(n, 2, x, d.vel, v, d.rho, d.press, ir, d.mass_p, d.type);
+    vres_sph_arrays P = vres_sph_arrays_make(n, 2, x, v, d.rho, d.press, ir, d.mass_p, d.type);
     /* the specialised loops: with shifting, then without, each of both viscosities and kernels */
     static const vres_interact_v_fn loops[2][4] = {
         {vres_sph2d_dbc_fourtakas_cpu, vres_sph2d_laminar_dbc_fourtakas_cpu, vres_sph2d_cubic_dbc_fourtakas_cpu,
@@ -470,6 +470,7 @@ START_TEST(interaction3d_cells_equal_particles)
     static const int pers[3][3] = {{1, 0, 0}, {0, 1, 0}, {1, 1, 1}};
     const size_t n = d.n;
     double *ir = malloc(n * sizeof *ir), *xs = malloc(3 * n * sizeof *xs);
+    float *vs = malloc(3 * n * sizeof *vs);
     double *ace1 = calloc(3 * n, sizeof(double)), *ar1 = calloc(n, sizeof(double)), *vi1 = calloc(n, sizeof(double));
     double *sh1 = calloc(4 * n, sizeof(double)), *ace2 = calloc(3 * n, sizeof(double));
     double *ar2 = calloc(n, sizeof(double)), *vi2 = calloc(n, sizeof(double)), *sh2 = calloc(4 * n, sizeof(double));
@@ -480,8 +481,8 @@ START_TEST(interaction3d_cells_equal_particles)
         ck_assert_int_eq(vres_cells_init(&g, 3, 2 * C3.h, lo, hi, pers[pi]), 0);
         vres_cells_build(&g, d.pos, d.n);
         ck_assert_int_eq(vres_cells_reorder(&g, &d), 0);
-        vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, NULL, ir);
-        vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, d.vel, NULL, d.rho, d.press, ir, d.mass_p, d.type);
+        vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, vs, ir);
+        vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, vs, d.rho, d.press, ir, d.mass_p, d.type);
         vres_sph_fluid_counts(n, d.type, nfl);
         for (int walls = 1; walls <= 2; walls++)
             for (int v = 0; v < 8; v++)
@@ -522,7 +523,7 @@ START_TEST(interaction3d_cells_equal_particles)
                 }
         vres_cells_free(&g);
     }
-    free(ir), free(xs), free(ace1), free(ar1), free(vi1), free(sh1), free(ace2), free(ar2), free(vi2), free(sh2);
+    free(ir), free(xs), free(vs), free(ace1), free(ar1), free(vi1), free(sh1), free(ace2), free(ar2), free(vi2), free(sh2);
     free(nfl);
     vres_domain_free(&d);
 }
@@ -559,6 +560,7 @@ START_TEST(dry_walls_pass_over_their_rows)
     ck_assert(5 * dp - 0.3 * dp > 2 * C3.h); /* the block (x >= 0.11) lies beyond the support of the fluid (x < 0.06) */
     const size_t n = d.n;
     double *ir = malloc(n * sizeof *ir), *xs = malloc(3 * n * sizeof *xs), *ar[3];
+    float *vs = malloc(3 * n * sizeof *vs);
     double *ace = calloc(3 * n, sizeof(double)), *vi = calloc(n, sizeof(double));
     uint32_t *nfl = malloc(n * sizeof *nfl);
     for (int r = 0; r < 3; r++) ar[r] = calloc(n, sizeof(double));
@@ -567,8 +569,8 @@ START_TEST(dry_walls_pass_over_their_rows)
     ck_assert_int_eq(vres_cells_init(&g, 3, 2 * C3.h, lo, hi, NULL), 0);
     vres_cells_build(&g, d.pos, d.n);
     ck_assert_int_eq(vres_cells_reorder(&g, &d), 0);
-    vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, NULL, ir);
-    vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, d.vel, NULL, d.rho, d.press, ir, d.mass_p, d.type);
+    vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, vs, ir);
+    vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, vs, d.rho, d.press, ir, d.mass_p, d.type);
     vres_sph_fluid_counts(n, d.type, nfl);
     vres_sph_general_cpu(n, &g, d.pos, d.vel, d.rho, d.press, d.mass_p, d.type, C3, ace, ar[0], vi, NULL,
                          VRES_DDT_FOURTAKAS, VRES_WALLS_DBC, VRES_VISC_ARTIFICIAL, VRES_KERNEL_WENDLAND, 0);
@@ -585,7 +587,7 @@ START_TEST(dry_walls_pass_over_their_rows)
     ck_assert_uint_gt(wet, 50);  /* the floor under the fluid (2 layers of 6 x 6) and near it */
     vres_cells_free(&g);
     for (int r = 0; r < 3; r++) free(ar[r]);
-    free(ir), free(xs), free(ace), free(vi), free(nfl);
+    free(ir), free(xs), free(vs), free(ace), free(vi), free(nfl);
     vres_domain_free(&d);
 }
 END_TEST

@@ -306,9 +306,9 @@ START_TEST(cell_loops_equal_particle_loops)
             double *ar1 = calloc(n, sizeof *ar1), *ar2 = calloc(n, sizeof *ar2);
             double *vi1 = calloc(n, sizeof *vi1), *vi2 = calloc(n, sizeof *vi2), *sps1 = calloc(3 * n, sizeof *sps1);
             double *xs = calloc(3 * n, sizeof *xs), *inv_rho = calloc(n, sizeof *inv_rho);
-            float *v2d = calloc(2 * n, sizeof *v2d);
-            vres_sph_split_cpu(n, n, dim, d.pos, d.vel, d.rho, xs, v2d, inv_rho);
-            vres_sph_arrays P = vres_sph_arrays_make(n, dim, xs, d.vel, v2d, d.rho, d.press, inv_rho, d.mass_p, d.type);
+            float *vs = calloc(3 * n, sizeof *vs);
+            vres_sph_split_cpu(n, n, dim, d.pos, d.vel, d.rho, xs, vs, inv_rho);
+            vres_sph_arrays P = vres_sph_arrays_make(n, dim, xs, vs, d.rho, d.press, inv_rho, d.mass_p, d.type);
             /* per particle: the stress and its acceleration alone */
             vres_sps_tau_cpu(n, &g, d.pos, d.vel, d.rho, d.mass_p, d.type, C, kernel, tau1);
             vres_sps_force_cpu(n, &g, d.pos, d.mass_p, d.type, C, VRES_WALLS_FLOATING, kernel, tau1, sps1);
@@ -342,7 +342,7 @@ START_TEST(cell_loops_equal_particle_loops)
                 if (d.type[i] == VRES_BUFFER) tbig = fabs(tau1[6 * i]); /* the buffer particle has its stress */
             ck_assert(big > 0 && tbig > 0); /* compared on something */
             free(tau1), free(tau2), free(ace1), free(ace2), free(ar1), free(ar2), free(vi1), free(vi2), free(sps1);
-            free(xs), free(inv_rho), free(v2d);
+            free(xs), free(inv_rho), free(vs);
             vres_cells_free(&g);
             vres_domain_free(&d);
         }
