@@ -1417,6 +1417,38 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_cell_v(size_t cell, const vr
     }
 }
 
+/* vres_cells_count_within's count for the particles of cell `cell` of g (the ordered pairs within
+ * sqrt(r2max) (m) that they see, a particle itself left out but not its periodic images), over the
+ * split positions of P and the cell's stencil: the same distances in the same operations, the
+ * whole rows (no window: the count comes between sorts, when the rows may no longer be in order
+ * of x), four candidates at a time. Each particle's neighbours are searched from the cell it was
+ * sorted into. dim a compile-time constant where it matters. */
+VRES_HD static inline size_t vres_sph_count_cell(size_t cell, const vres_cells *g, const vres_sph_arrays *P,
+                                                 double r2max, const int dim)
+{
+    vres_sph_stencil St;
+    const size_t end = vres_sph_stencil_make(cell, g, dim, &St);
+    size_t total = 0;
+    for (size_t a = g->begin[cell]; a < end; a++) {
+        const double xa = P->x[a], ya = dim == 3 ? P->y[a] : 0.0, za = P->z[a];
+        for (int c = 0; c < St.m; c++) {
+            const double *sh = St.nb[c].shift;
+            const size_t b0 = St.nb[c].begin, e = St.nb[c].end;
+            const size_t self = sh[0] == 0 && sh[1] == 0 && sh[2] == 0 ? a : (size_t)-1; /* a's own slot */
+            size_t k = 0;
+#pragma omp simd reduction(+ : k)
+            for (size_t b = b0; b < e; b++) {
+                const double dx = xa - (P->x[b] + sh[0]), dz = za - (P->z[b] + sh[2]);
+                const double dy = dim == 3 ? ya - (P->y[b] + sh[1]) : 0.0;
+                const double r2 = dim == 3 ? dx * dx + dy * dy + dz * dz : dx * dx + dz * dz;
+                k += (r2 < r2max) & (b != self);
+            }
+            total += k;
+        }
+    }
+    return total;
+}
+
 /* VRES_CELL_LOOP(name, fn, (params), (args)): VRES_PARTICLE_LOOP over cells. On the CPU the
  * cells are dealt out in small chunks as threads become free, because cells differ in how many
  * particles they hold (a static split of a dam break gives one thread the water, the other the

@@ -283,7 +283,7 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     long step = s->step, step_start = s->step;
     /* a restart's first Verlet step is an Euler step: the previous step is not in the snapshot */
     int verlet_count = restarted ? c->verlet_steps - 1 : 0;
-    run_clock clk = {vres_run_wall_now(), vres_run_wall_now(), step, vres_run_wall_now()};
+    run_clock clk = {vres_run_wall_now(), vres_run_wall_now(), step, vres_run_wall_now(), -1};
     int rc = VRES_RUN_OK, nsnap0 = r->next_snap;
     int sorted = 0; /* 1 when every domain is in cell order for its positions now: after a coupled
                        step's exchange (which sorts last), when no particle was excluded since */
@@ -352,7 +352,10 @@ static int time_loop(vres_store *s, run_set *set, const run_cfg *c, run_resume *
     }
     vres_run_progress(c, &clk, s->time, t, step, dt, 1);
     double tp = vres_prof_now();
-    if (rc == VRES_RUN_OK && vres_run_checkpoint(s, set, c, r, f, &clk, t, step) != 0) rc = VRES_RUN_FAIL;
+    /* a run that ended on a snapshot has written this state already: checkpoint.h5 is its copy */
+    if (rc == VRES_RUN_OK && !(clk.snap_step == step && vres_run_checkpoint_copy(r, f, &clk) == 0) &&
+        vres_run_checkpoint(s, set, c, r, f, &clk, t, step) != 0)
+        rc = VRES_RUN_FAIL;
     vres_prof_add(&set->prof, VRES_PROF_OUTPUT, tp);
     set->prof.loop_s = vres_run_wall_now() - clk.start, set->prof.steps = step - step_start;
     if (rc == VRES_RUN_OK)

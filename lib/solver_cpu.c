@@ -389,17 +389,24 @@ static int cpu_append(vres_backend *b, const vres_domain *src)
     return 0;
 }
 
-/* Ordered pairs within 2h (cells as of the last sort; positions now). */
+/* Ordered pairs within 2h (cells as of the last sort; positions now), by cells over the split
+ * positions (kernels/sph.h's vres_sph_count_cell: vres_cells_count_within's count, vectorised;
+ * the split arrays are scratch, made again by the next force evaluation). */
 static size_t cpu_count_pairs(vres_backend *b)
 {
     cpu_ctx *x = ctx_of(b);
     const vres_domain *d = x->d;
     const vres_cells *g = &x->cells;
     const double r2max = x->C.fourh2;
+    const int dim = x->c.dim;
     size_t total = 0;
     if (g->n != d->n) return 0;
-#pragma omp parallel for reduction(+ : total) schedule(dynamic, 256)
-    for (size_t a = 0; a < d->n; a++) total += vres_cells_count_within(g, d->pos, a, r2max);
+    vres_sph_split_cpu(d->n, d->n, dim, d->pos, d->vel, d->rho, x->xs, x->vs, x->inv_rho);
+    const vres_sph_arrays P = vres_sph_arrays_make(d->n, dim, x->xs, x->vs, d->rho, d->press, x->inv_rho,
+                                                   d->mass_p, d->type);
+#pragma omp parallel for reduction(+ : total) schedule(dynamic, 16)
+    for (size_t cell = 0; cell < g->ncells; cell++)
+        total += dim == 2 ? vres_sph_count_cell(cell, g, &P, r2max, 2) : vres_sph_count_cell(cell, g, &P, r2max, 3);
     return total;
 }
 

@@ -237,6 +237,7 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
     }
     vres_debug("snap %05d: t %.6g s, step %ld, dt %.3g s, max speed %.4g m/s, density %.6g..%.6g kg/m^3",
                r->next_snap - 1, t, step, dt, st.vmax, st.rho_lo, st.rho_hi);
+    clk->snap_step = step;
     clk->last = vres_run_wall_now();
     clk->last_step = step;
     return 0;
@@ -254,6 +255,23 @@ int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run
     if (!rc) vres_debug("checkpoint at t = %.6g s, step %ld: %s", t, step, path);
     free(path);
     clk->last_ckpt = vres_run_wall_now();
+    return rc;
+}
+
+int vres_run_checkpoint_copy(const run_resume *r, const run_files *f, run_clock *clk)
+{
+    if (r->next_snap < 1) return -1;
+    char *snap = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
+    char *path = vres_xasprintf("%s/checkpoint.h5", f->dir), why[600];
+    unsigned char *buf = NULL;
+    size_t len = 0;
+    why[0] = 0;
+    vres_error_hold(why, sizeof why); /* a failure is not reported: the state is written instead */
+    int rc = vres_read_all(snap, &buf, &len) != 0 || vres_write_text(path, (const char *)buf, len) != 0 ? -1 : 0;
+    vres_error_hold(NULL, 0);
+    if (!rc) vres_debug("checkpoint: %s copied to %s", snap, path), clk->last_ckpt = vres_run_wall_now();
+    else vres_debug("checkpoint: no copy of %s (%s): written instead", snap, why);
+    free(buf), free(snap), free(path);
     return rc;
 }
 

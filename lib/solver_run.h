@@ -56,6 +56,7 @@ typedef struct run_clock {
     double last;        /* wall time at the previous output (s) */
     long last_step;     /* step of the previous output */
     double last_ckpt;   /* wall time of the last checkpoint (or the start) (s) */
+    long snap_step;     /* step of the last snapshot this run wrote; -1 before the first */
 } run_clock;
 
 /* ---- solver_config.c: the configuration ---- */
@@ -111,6 +112,10 @@ int vres_run_output(vres_store *s, run_set *set, const run_cfg *c, run_resume *r
  * and the command that continues the run. */
 int vres_run_checkpoint(vres_store *s, run_set *set, const run_cfg *c, const run_resume *r, const run_files *f,
                         run_clock *clk, double t, long step);
+/* Write RUNDIR/checkpoint.h5 (atomically) as a copy of the run's newest snapshot, which holds the
+ * same state when it was written at this step (clk->snap_step): the bytes are copied, not the state
+ * written again. 0, or -1 (nothing printed: the caller writes the checkpoint instead). */
+int vres_run_checkpoint_copy(const run_resume *r, const run_files *f, run_clock *clk);
 
 /* The progress line on a terminal: rewritten in place at most twice a second while the run
  * goes on (stderr only, never with -q or when stderr is not a terminal); done = 1 ends it. */

@@ -313,7 +313,7 @@ END_TEST
  * the same order as the 3D per-particle one, so on a 2D particle set (a jittered block of fluid
  * with wall particles below, random velocities and densities) every variant, with shifting and
  * without, and the general cell-wise loop give bit for bit the per-particle loop's rates:
- * tolerance 0. C's smoothing length h (m); the block nx particles wide, the box as wide (m) and
+ * tolerance 0; the vectorised pair count (vres_sph_count_cell) is vres_cells_count_within's. C's smoothing length h (m); the block nx particles wide, the box as wide (m) and
  * periodic along the axes per[] asks. */
 static void check_2d_equals_3d(vres_sph_consts C, const int per[3], int nx)
 {
@@ -349,6 +349,11 @@ static void check_2d_equals_3d(vres_sph_consts C, const int per[3], int nx)
         x[i] = d.pos[3 * i], x[n + i] = d.pos[3 * i + 2], v[i] = d.vel[3 * i], v[n + i] = d.vel[3 * i + 2],
         ir[i] = 1.0 / d.rho[i];
     vres_sph_arrays P = vres_sph_arrays_make(n, 2, x, v, d.rho, d.press, ir, d.mass_p, d.type);
+    size_t want = 0, got = 0; /* the pair count by cells is vres_cells_count_within's */
+    for (size_t a = 0; a < n; a++) want += vres_cells_count_within(&g, d.pos, a, C.fourh2);
+    for (size_t cell = 0; cell < g.ncells; cell++) got += vres_sph_count_cell(cell, &g, &P, C.fourh2, 2);
+    ck_assert_uint_gt(want, 10 * n);
+    ck_assert_uint_eq(got, want);
     /* the specialised loops: with shifting, then without, each of both viscosities and kernels */
     static const vres_interact_v_fn loops[2][4] = {
         {vres_sph2d_dbc_fourtakas_cpu, vres_sph2d_laminar_dbc_fourtakas_cpu, vres_sph2d_cubic_dbc_fourtakas_cpu,
@@ -442,7 +447,8 @@ static vres_sph_consts consts3d(void)
  * that Fourtakas' term has one) every specialised variant of each family and the general
  * cell-wise loop give bit for bit the per-particle general loop's rates, with fixed walls and
  * with floating bodies (tolerance 0). Periodic in x, y and all three axes, so that wrapped ranges
- * occur on each. */
+ * occur on each. The vectorised pair count (vres_sph_count_cell) counts what
+ * vres_cells_count_within counts. */
 START_TEST(interaction3d_cells_equal_particles)
 {
     const double dp = 0.01, L = 0.08;
@@ -484,6 +490,11 @@ START_TEST(interaction3d_cells_equal_particles)
         vres_sph_split_cpu(n, n, 3, d.pos, d.vel, d.rho, xs, vs, ir);
         vres_sph_arrays P = vres_sph_arrays_make(n, 3, xs, vs, d.rho, d.press, ir, d.mass_p, d.type);
         vres_sph_fluid_counts(n, d.type, nfl);
+        size_t want = 0, got = 0; /* the pair count by cells is vres_cells_count_within's */
+        for (size_t a = 0; a < n; a++) want += vres_cells_count_within(&g, d.pos, a, C3.fourh2);
+        for (size_t cell = 0; cell < g.ncells; cell++) got += vres_sph_count_cell(cell, &g, &P, C3.fourh2, 3);
+        ck_assert_uint_gt(want, 30 * n);
+        ck_assert_uint_eq(got, want);
         for (int walls = 1; walls <= 2; walls++)
             for (int v = 0; v < 8; v++)
                 for (int gen = 0; gen < 2; gen++) {

@@ -12,6 +12,13 @@ DB=$CASES/dsph_dambreak2d/dambreak2d_Def.xml
 "$BIN/vres-gencase" -q --dp 0.05 "$DB" -o "$T/db.h5" || notok "gencase the dam break"
 expect 0 "uninterrupted run to 0.1 s, 5 outputs" "$RUN" -q --threads 2 --tmax 0.1 --tout 0.02 "$T/db.h5" -o "$T/a"
 check "checkpoint.h5 written at the end" [ -f "$T/a/checkpoint.h5" ]
+check "the run ended on snapshot 5: checkpoint.h5 is its copy, byte for byte" \
+    cmp -s "$T/a/checkpoint.h5" "$T/a/snap_00005.h5"
+expect 0 "a run that ends between outputs (every 0.03 s to 0.1 s)" \
+    "$RUN" -q --threads 2 --tmax 0.1 --tout 0.03 "$T/db.h5" -o "$T/odd"
+check "its checkpoint.h5 holds the final state, not the last snapshot's" \
+    sh -c "! cmp -s '$T/odd/checkpoint.h5' '$T/odd/snap_00003.h5' && \
+           h5diff -q '$T/odd/checkpoint.h5' '$T/a/checkpoint.h5' /Domains/D0/Position /Domains/D0/Position"
 
 # restart in a copy of the run directory from snapshot 2
 cp -r "$T/a" "$T/b"
