@@ -250,6 +250,22 @@ VRES_HD static inline void vres_cells_ijk(const vres_cells *g, size_t cell, int 
     ijk[0] = (int)(cell % nx), ijk[1] = (int)(cell % nxy / nx), ijk[2] = (int)(cell / nxy);
 }
 
+/* The first cell of part t of T (0 <= t <= T) of g's cells 0 .. ncells (the last: the slots
+ * outside the grid), the parts holding about equal numbers of slots: the first cell whose first
+ * slot is at least n t / T (ncells + 1 for t = T). */
+VRES_HD static inline size_t vres_cells_part(const vres_cells *g, size_t t, size_t T)
+{
+    if (t >= T) return g->ncells + 1;
+    const size_t s = g->n * t / T;
+    size_t lo = 0, hi = g->ncells + 1;
+    while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (g->begin[mid] < s) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
+}
+
 /* How many particles b != a lie within sqrt(r2max) (m) of particle a (images across periodic
  * axes counted as they come), for positions pos [3n] in the cells' slot order: the count of
  * ordered neighbour pairs that the interaction sees, from one side. */

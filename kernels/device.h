@@ -40,6 +40,19 @@
 #define VRES_CLONES
 #endif
 
+/* The OpenMP thread count of the current parallel region, this thread's number, and the most a
+ * region may have (1, 0 and 1 without OpenMP). */
+#if defined(_OPENMP) && !defined(__CUDACC__)
+#include <omp.h>
+static inline size_t vres_omp_threads(void) { return (size_t)omp_get_num_threads(); }
+static inline size_t vres_omp_thread(void) { return (size_t)omp_get_thread_num(); }
+static inline size_t vres_omp_max_threads(void) { return (size_t)omp_get_max_threads(); }
+#else
+static inline size_t vres_omp_threads(void) { return 1; }
+static inline size_t vres_omp_thread(void) { return 0; }
+static inline size_t vres_omp_max_threads(void) { return 1; }
+#endif
+
 /* Strip the parentheses of a parameter or argument list. */
 #define VRES_UNPAREN(...) __VA_ARGS__
 

@@ -17,6 +17,7 @@
  * bad-input test uses it for values vres-gencase itself refuses (cflnumber=2). */
 #include <check.h>
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -303,6 +304,57 @@ START_TEST(periodic_lattice_has_no_edges)
     /* the viscous term is there (u'' = -(2 pi/L)^2 u): so the rows are compared on something */
     ck_assert(fabs(row[2]) > 1e-4);
     free(ace), free(ar), free(visc);
+    vres_cells_free(&g);
+    vres_domain_free(&d);
+}
+END_TEST
+
+/* VRES_CELL_LOOP's deal of the cells: a counting visit per cell. */
+static inline void visit_one(size_t cell, const vres_cells *g, int *count)
+{
+    (void)g;
+    __atomic_fetch_add(&count[cell], 1, __ATOMIC_RELAXED);
+}
+VRES_CELL_LOOP(visit, visit_one, (const vres_cells *g, int *count), (g, count))
+
+/* The cell loops (VRES_CELL_LOOP) visit every cell 0 .. ncells exactly once with 1 to 5 threads,
+ * on a dam-break-like set (the particles packed in one corner of the box, most cells empty, a few
+ * outside), and vres_cells_part splits the cells into parts that begin where slot n t / T falls:
+ * the first part at cell 0, the last ending at ncells + 1, each starting at the first cell whose
+ * first slot reaches n t / T. */
+START_TEST(cell_loop_visits_each_cell_once)
+{
+    vres_domain d;
+    memset(&d, 0, sizeof d);
+    srand(5);
+    for (int i = 0; i < 3000; i++) {
+        double x[3] = {0.3 * rand() / (double)RAND_MAX, 0, 0.5 * rand() / (double)RAND_MAX};
+        if (i % 500 == 0) x[0] = 2.0; /* outside the box */
+        vres_domain_push(&d, x, VRES_FLUID, 0);
+    }
+    vres_cells g;
+    double lo[3] = {0, 0, 0}, hi[3] = {1.0, 0, 1.0};
+    ck_assert_int_eq(vres_cells_init(&g, 2, 0.03, lo, hi, NULL), 0);
+    vres_cells_build(&g, d.pos, d.n);
+    ck_assert_uint_gt(g.nout, 0);
+    int *count = malloc((g.ncells + 1) * sizeof *count);
+    const int threads0 = omp_get_max_threads();
+    for (int T = 1; T <= 5; T++) {
+        ck_assert_uint_eq(vres_cells_part(&g, 0, (size_t)T), 0);
+        ck_assert_uint_eq(vres_cells_part(&g, (size_t)T, (size_t)T), g.ncells + 1);
+        for (int t = 1; t < T; t++) {
+            const size_t c = vres_cells_part(&g, (size_t)t, (size_t)T), s = g.n * (size_t)t / (size_t)T;
+            ck_assert_uint_ge(c, vres_cells_part(&g, (size_t)t - 1, (size_t)T));
+            ck_assert_uint_ge(g.begin[c], s);
+            ck_assert(c == 0 || g.begin[c - 1] < s);
+        }
+        memset(count, 0, (g.ncells + 1) * sizeof *count);
+        omp_set_num_threads(T);
+        visit_cpu(g.ncells + 1, &g, count);
+        for (size_t c = 0; c <= g.ncells; c++) ck_assert_int_eq(count[c], 1);
+    }
+    omp_set_num_threads(threads0);
+    free(count);
     vres_cells_free(&g);
     vres_domain_free(&d);
 }
@@ -786,6 +838,7 @@ int main(void)
     tcase_add_test(tc, laminar_pair_conserves_momentum_and_brakes);
     tcase_add_test(tc, laminar_lattice_gives_nu_laplacian);
     tcase_add_test(tc, periodic_lattice_has_no_edges);
+    tcase_add_test(tc, cell_loop_visits_each_cell_once);
     tcase_add_test(tc, interaction2d_equals_3d);
     tcase_add_test(tc, interaction2d_many_pairs_equals_3d);
     tcase_add_test(tc, interaction2d_narrow_equals_3d);
