@@ -1136,9 +1136,10 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S,
 }
 
 #ifdef VRES_KEEP8
-/* Steps 1 to 3 of vres_sph_interact_v at once for a fluid particle a at (xa, ya, za) (m; ya unused in
- * 2D) in dimension dim, without the shifting and SPS terms: the next pass of its pairs in the ranges of its stencil St (from
- * range *cp at slot *b0p on, both advanced past the pass; rows out of reach passed over whole),
+/* Steps 1 to 3 of vres_sph_interact_v at once for a fluid particle a at (xa, ya, za) (m; ya unused
+ * in 2D) in dimension dim, without the shifting and SPS terms: the next pass of its pairs in the
+ * ranges of its stencil St (from range *cp at slot *b0p on, both advanced past the pass; rows out
+ * of reach passed over whole),
  * eight candidates at a time: their offsets and distances in double, the lanes inside the support
  * (a itself out) moved to the front (vres_keep8_mask, vres_keep8_perm) and stored at the end of Q's
  * list, rounded to float, with b's velocity, density, pressure and mass (whose slots are as
@@ -1454,8 +1455,8 @@ VRES_HD static inline size_t vres_sph_count_cell(size_t cell, const vres_cells *
  * cells (vres_cells_part: about n_particles / T slots each), the slots the particle loops
  * (schedule static) and the sort's gathers give that thread, so that a step's data stay in the
  * cache of the core that wrote them: on this project's VM the dynamic deal of small chunks over
- * all the cells ran the 2D dam break 15% slower at two threads, more so at the times when its two
- * vCPUs sit far apart. Cells differ in how many particles and pairs they hold, so the parts are
+ * all the cells ran the 2D dam break 6% slower at two threads (medians of nine interleaved runs;
+ * up to 20% in the rounds where the VM's cores exchange data slowly). Cells differ in how many particles and pairs they hold, so the parts are
  * taken in chunks of 16 cells from a counter per part, and a thread done with its own part helps
  * with the next ones. Which thread does a cell changes nothing in its sums. */
 #ifdef __CUDACC__
