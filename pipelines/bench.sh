@@ -37,16 +37,28 @@
 #   and the two-domain dam break of table 4 (from its warm state at WARMVRES s), about
 #   STEPSPHASE steps each, one run each at PHASE_THREADS threads. Each run writes two snapshots
 #   (its start and its end), which is the output share: it shrinks as STEPSPHASE grows.
-# Table 6 (scaling): cost per particle-step (microseconds) against the particle count, about
-#   max(STEPSSCALE, SCALE_PS / N) steps each (the same particle-steps at every size, so a small
-#   run is not all start-up; SCALE_REPEATS rounds over the sizes in turn, the median per size;
-#   SCALE_THREADS threads, from t = 0: the start's time step),
+# Table 6 (scaling): cost per particle-step (microseconds) against the particle count,
+#   STEPSSCALE steps at every size from t = 0 (SCALE_REPEATS rounds over the sizes in turn, the
+#   median per size; SCALE_THREADS threads). The same steps, not the same particle-steps: the
+#   time step scales with dp, so after the same steps the particles have moved the same distance
+#   in particle spacings and every size is measured in the same state of its lattice. (Until
+#   2026-12-06 the table gave each size 2e7 particle-steps, so the 15,625-particle cube ran
+#   1,670 steps, far into its flow, against 21 for the million; the per-pair cost of the forces
+#   grows as the lattice's order is lost, by 15-45% on this VM, which made the small sets look
+#   slower for a reason that is not their size.)
 #   of the 2D dam break (cases/dsph_dambreak2d) at the dp values SCALE2D_DPS and of the 3D
 #   one (cases/bench_dambreak3d) at SCALE3D_DPS: by default about 2e4, 1e5, 5e5 and 1e6
-#   particles in 2D, 1.7e4, 1.1e5, 3.6e5 and 1e6 in 3D. Its cost, measured (2026-12-04, 2
-#   threads): about 1.5 min in 2D and 11 min in 3D (2e7 particle-steps at 0.35 and 2.2-2.8 us,
-#   three rounds), plus vres-gencase's drawing of each store once (kept in OUTDIR and reused).
-#   Smaller sets: SCALE2D_DPS, SCALE3D_DPS, SCALE_PS, SCALE_REPEATS. SCALE_ALGOS ("symplectic
+#   particles in 2D, 1.7e4, 1.1e5, 3.6e5 and 1e6 in 3D; and of a triply periodic cube of fluid
+#   (cases/bench_tgv3d, the 3-D Taylor-Green vortex set by pipelines/tgv_init.py, which needs
+#   python3 with h5py and numpy; left out with a note without them) at SCALETGV_DPS, 15,625,
+#   125,000, 512,000 and 1e6 particles: there every particle has a whole kernel support at
+#   every size, where the dam break's coarse sets have more truncated supports (fewer pairs per
+#   particle), so its rows show what the size alone costs. Its cost, measured (2 threads, this VM,
+#   2026-12-06, the defaults): 3.5 min in 2D, 8.5 min for the 3D dam break and 10 min for the
+#   cube, 22 min in all, each run's start and two snapshots included, plus vres-gencase's
+#   drawing of each store once (kept in OUTDIR and reused).
+#   Smaller sets: SCALE2D_DPS, SCALE3D_DPS, SCALETGV_DPS, STEPSSCALE, SCALE_REPEATS, SCALE_CASES
+#   (of "dambreak2d dambreak3d tgv3d", all by default). SCALE_ALGOS ("symplectic
 #   verlet") gives a row set per time integrator (Verlet's rows named -verlet; about half the cost).
 #
 #   bash pipelines/bench.sh [OUTDIR]      (default build/bench; the stores are kept there and
@@ -54,10 +66,10 @@
 # Environment: STEPS (60), REPEATS (3), STEPS3D (4), BENCH3D (1), MEM3D_GIB (1: the 3D run
 # holds about 0.3 GB), DPVRES (0.01), WARMVRES (0.5), STEPSVRES (1000), BENCH_TABLES (the
 # tables to make, of "2d 3d loop vres"; default all) and VRES_BIN (the tools' directory,
-# default bin/), STEPSPHASE (200), PHASE_THREADS (2, or 1 on one core), STEPSSCALE (20), SCALE_PS
-# (2e7 particle-steps), SCALE_REPEATS (3),
+# default bin/), STEPSPHASE (200), PHASE_THREADS (2, or 1 on one core), STEPSSCALE (40),
+# SCALE_REPEATS (3),
 # SCALE_THREADS (likewise), SCALE2D_DPS ("0.01 0.0045 0.002 0.0014"), SCALE3D_DPS ("0.02 0.01
-# 0.0065 0.0045"), ROOF_THREADS (likewise). BENCH_TABLES names also "phases", "scaling" and "roofline". The coupled runs set
+# 0.0065 0.0045"), SCALETGV_DPS ("0.04 0.02 0.0125 0.01"), ROOF_THREADS (likewise). BENCH_TABLES names also "phases", "scaling" and "roofline". The coupled runs set
 # OMP_WAIT_POLICY=passive unless it is set: on a busy machine spinning threads only steal time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -76,17 +88,19 @@ BENCH_TABLES=${BENCH_TABLES:-2d 3d loop vres phases scaling roofline}
 TH2=$(($(nproc) < 2 ? 1 : 2))
 STEPSPHASE=${STEPSPHASE:-200}
 PHASE_THREADS=${PHASE_THREADS:-$TH2}
-STEPSSCALE=${STEPSSCALE:-20}
-SCALE_PS=${SCALE_PS:-2e7}
+STEPSSCALE=${STEPSSCALE:-40}
 SCALE_REPEATS=${SCALE_REPEATS:-3}
 SCALE_ALGOS=${SCALE_ALGOS:-symplectic verlet}
 SCALE_THREADS=${SCALE_THREADS:-$TH2}
 SCALE2D_DPS=${SCALE2D_DPS:-0.01 0.0045 0.002 0.0014}
 SCALE3D_DPS=${SCALE3D_DPS:-0.02 0.01 0.0065 0.0045}
+SCALETGV_DPS=${SCALETGV_DPS:-0.04 0.02 0.0125 0.01}
+SCALE_CASES=${SCALE_CASES:-dambreak2d dambreak3d tgv3d}
 DB=cases/dsph_dambreak2d/dambreak2d_Def.xml
 DB3=cases/bench_dambreak3d/bench_dambreak3d_Def.xml
 TG=cases/taylor_green2d/taylor_green2d_Def.xml
 DBV=cases/dambreak2d/dambreak2d_Def.xml
+TGV3=cases/bench_tgv3d/bench_tgv3d_Def.xml
 
 # want TABLE: true when BENCH_TABLES names TABLE
 want() { case " $BENCH_TABLES " in *" $1 "*) return 0 ;; esac; return 1; }
@@ -102,6 +116,23 @@ gen() {
         "$BIN/vres-gencase" -q "$@" "$xml" -o "$out/$name.h5"
         printf '%s\n' "$args" >"$out/$name.args"
     fi
+}
+
+# tgv_python: the python3 that has h5py and numpy (printed), or a non-zero status
+tgv_python() {
+    local py
+    for py in python3 /usr/bin/python3; do
+        "$py" -c 'import h5py, numpy' 2>/dev/null && { echo "$py"; return 0; }
+    done
+    return 1
+}
+
+# tgv_set STORE: the 3-D Taylor-Green vortex set in STORE (pipelines/tgv_init.py), once: again
+# only when vres-gencase has drawn the store anew (STORE.tgv, its mark, is then older)
+tgv_set() {
+    [ "$1.tgv" -nt "$1" ] && return 0
+    "$(tgv_python)" pipelines/tgv_init.py "$1" 2>"$1.tgvlog" || { cat "$1.tgvlog" >&2; exit 1; }
+    touch "$1.tgv"
 }
 
 # particles STORE: its particle count
@@ -347,43 +378,52 @@ if want phases; then
 fi
 
 if want scaling; then
-    printf '\n# cost per particle-step against size (from t = 0, each size run for about max(%s, %s / N) steps,\n' \
-        "$STEPSSCALE" "$SCALE_PS"
-    printf '# %s rounds over the sizes in turn, the median per size; %s threads): the 2D dam break (%s)\n' \
+    printf '\n# cost per particle-step against size (from t = 0, about %s steps at every size: the same distance\n' \
+        "$STEPSSCALE"
+    printf '# moved in particle spacings, %s rounds over the sizes in turn, the median per size; %s threads):\n# the 2D dam break (%s),\n' \
         "$SCALE_REPEATS" "$SCALE_THREADS" "$DB"
-    printf '# and the 3D one (%s) at several dp; us_per_particle_step leaves out the two snapshots\n' "$DB3"
+    printf '# the 3D one (%s) and the periodic cube (%s, tgv3d: every particle with a whole support) at\n' "$DB3" "$TGV3"
+    printf '# several dp; us_per_particle_step leaves out the two snapshots\n'
     printf "$header"
-    for spec in "2d $DB $SCALE2D_DPS" "3d $DB3 $SCALE3D_DPS"; do
+    for spec in "dambreak2d $DB $SCALE2D_DPS" "dambreak3d $DB3 $SCALE3D_DPS" "tgv3d $TGV3 $SCALETGV_DPS"; do
+      set -- $spec
+      cname=$1
+      case " $SCALE_CASES " in *" $cname "*) ;; *) continue ;; esac
+      if [ "$cname" = tgv3d ] && ! tgv_python >/dev/null; then
+          printf '# tgv3d left out: no python3 with h5py and numpy to set its vortex (setup.sh installs them)\n'
+          continue
+      fi
       for algo in $SCALE_ALGOS; do
         set -- $spec
-        dim=$1 xml=$2
+        xml=$2
         shift 2
         # Symplectic as the cases say; Verlet through --set (the name's suffix)
         sfx=; [ "$algo" = verlet ] && sfx=-verlet
         for dp in "$@"; do
-            if [ -n "$sfx" ]; then gen "scale$dim-$dp$sfx" "$xml" --dp "$dp" --set StepAlgorithm=1
-            else gen "scale$dim-$dp" "$xml" --dp "$dp"; fi
+            if [ -n "$sfx" ]; then gen "scale-$cname-$dp$sfx" "$xml" --dp "$dp" --set StepAlgorithm=1
+            else gen "scale-$cname-$dp" "$xml" --dp "$dp"; fi
+            if [ "$cname" = tgv3d ]; then tgv_set "$out/scale-$cname-$dp$sfx.h5"; fi
         done
         # rounds: every size once per round, so that the sizes share the machine's slow minutes
         for r in $(seq "$SCALE_REPEATS"); do
             for dp in "$@"; do
-                name=scale$dim-$dp$sfx
+                name=scale-$cname-$dp$sfx
                 n=$(particles "$out/$name.h5")
-                steps=$(awk -v b="$SCALE_PS" -v n="$n" -v s="$STEPSSCALE" 'BEGIN {k = int(b / n); print (k > s ? k : s)}')
+                steps=$STEPSSCALE
                 rd=$out/run-$name-t$SCALE_THREADS-r$r
                 rm -rf "$rd"
                 OMP_NUM_THREADS=$SCALE_THREADS "$BIN/vres-run" -q --threads "$SCALE_THREADS" \
                     --tmax "$(tmax_for "$out/$name.h5" "$steps")" --tout "$(tmax_for "$out/$name.h5" "$steps")" \
                     "$out/$name.h5" -o "$rd"
-                echo "$dp $n $(figures "$rd")" >>"$out/scale$dim.runs"
+                echo "$dp $n $(figures "$rd")" >>"$out/scale-$cname.runs"
             done
         done
         for dp in "$@"; do
-            f=$(awk -v d="$dp" '$1 == d {print $3, $4, $5, $6}' "$out/scale$dim.runs" | sort -g -k2 |
+            f=$(awk -v d="$dp" '$1 == d {print $3, $4, $5, $6}' "$out/scale-$cname.runs" | sort -g -k2 |
                 awk -v m="$(((SCALE_REPEATS + 1) / 2))" 'NR == m')
-            row "dambreak$dim$sfx" "$dp" "$(particles "$out/scale$dim-$dp$sfx.h5")" "$SCALE_THREADS" $f
+            row "$cname$sfx" "$dp" "$(particles "$out/scale-$cname-$dp$sfx.h5")" "$SCALE_THREADS" $f
         done
-        rm -f "$out/scale$dim.runs"
+        rm -f "$out/scale-$cname.runs"
       done
     done
 fi
