@@ -95,7 +95,7 @@ START_TEST(buffers_and_two_domains_refused)
     /* without their coupling the hooks refuse to run two domains */
     run_dom dom[2];
     memset(dom, 0, sizeof dom);
-    run_set two = {2, dom, NULL, NULL, NULL, NULL};
+    run_set two = {.n = 2, .dom = dom}; /* the rest zero: no backends, no coupling */
     ck_assert_int_eq(vres_couple_buffers(&two, &c, 0), -1);
     ck_assert_int_eq(vres_couple_exchange(&two, &c, 0, 1e-4), -1);
 }
