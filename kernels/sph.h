@@ -1456,9 +1456,10 @@ VRES_HD static inline size_t vres_sph_count_cell(size_t cell, const vres_cells *
  * (schedule static) and the sort's gathers give that thread, so that a step's data stay in the
  * cache of the core that wrote them: on this project's VM the dynamic deal of small chunks over
  * all the cells ran the 2D dam break 6% slower at two threads (medians of nine interleaved runs;
- * up to 20% in the rounds where the VM's cores exchange data slowly). Cells differ in how many particles and pairs they hold, so the parts are
- * taken in chunks of 16 cells from a counter per part, and a thread done with its own part helps
- * with the next ones. Which thread does a cell changes nothing in its sums. */
+ * up to 20% in the rounds where the VM's cores exchange data slowly). Cells differ in how many
+ * particles and pairs they hold, so the parts are taken in chunks of 16 cells from a counter per
+ * part, and a thread done with its own part helps with the next ones. Which thread does a cell
+ * changes nothing in its sums. */
 #ifdef __CUDACC__
 #define VRES_CELL_LOOP(name, fn, params, args) VRES_PARTICLE_LOOP(name, fn, params, args)
 #else

@@ -96,7 +96,7 @@ def main():
             vel = d["Velocity"][:]
             u, p_sel = vortex(dim, 2 * np.pi * (pos[sel] - lo + dp0 / 2) / L, U, rho0)
             if rng is not None:
-                for a in axes if dim == 2 else (0, 1):  # the components that are not zero
+                for a in ((0, 2) if dim == 2 else (0, 1)):  # the components that are not zero
                     u[:, a] = u[:, a] * (1 + 2e-7 * rng.standard_normal(u.shape[0]))
             vel[sel] = u
             p = d["Pressure"][:]
