@@ -186,6 +186,37 @@ int vres_write_text(const char *path, const char *text, size_t len)
     return vres_out_commit(&of);
 }
 
+int vres_copy_file(const char *src, const char *dst)
+{
+    FILE *in = fopen(src, "rb");
+    if (!in) {
+        vres_error("%s: cannot open: %s", src, strerror(errno));
+        return -1;
+    }
+    vres_outfile of;
+    if (vres_out_begin(&of, dst) != 0) {
+        fclose(in);
+        return -1;
+    }
+    FILE *out = fopen(of.tmp, "wb");
+    const size_t chunk = 1 << 20;
+    unsigned char *buf = vres_xmalloc(chunk);
+    int ok = out != NULL, bad_in = 0;
+    size_t got;
+    while (ok && (got = fread(buf, 1, chunk, in)) > 0) ok = fwrite(buf, 1, got, out) == got;
+    if (ok && ferror(in)) ok = 0, bad_in = 1;
+    if (out && fclose(out) != 0) ok = 0;
+    fclose(in);
+    free(buf);
+    if (!ok) {
+        if (bad_in) vres_error("%s: read error", src);
+        else vres_error("%s: cannot write", dst);
+        vres_out_abort(&of);
+        return -1;
+    }
+    return vres_out_commit(&of);
+}
+
 int vres_mkdirs(const char *path)
 {
     char *p = vres_xstrdup(path);

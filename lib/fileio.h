@@ -37,6 +37,10 @@ int vres_write_stdout(const void *buf, size_t len);
 /* Write a finished text to stdout (path NULL or "-") or atomically to the file path.
  * Returns 0, or -1 after printing why (naming path). */
 int vres_write_text(const char *path, const char *text, size_t len);
+/* Copy the file src to dst atomically (vres_out_begin), a megabyte at a time: never more than that
+ * in memory, whatever the file's size. Returns 0, or -1 after printing why (naming the file), dst
+ * then untouched. */
+int vres_copy_file(const char *src, const char *dst);
 /* Create a directory and its parents (like mkdir -p). Returns 0, or -1 after printing why. */
 int vres_mkdirs(const char *path);
 

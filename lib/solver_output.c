@@ -263,15 +263,13 @@ int vres_run_checkpoint_copy(const run_resume *r, const run_files *f, run_clock 
     if (r->next_snap < 1) return -1;
     char *snap = vres_xasprintf("%s/snap_%05d.h5", f->dir, r->next_snap - 1);
     char *path = vres_xasprintf("%s/checkpoint.h5", f->dir), why[600];
-    unsigned char *buf = NULL;
-    size_t len = 0;
     why[0] = 0;
     vres_error_hold(why, sizeof why); /* a failure is not reported: the state is written instead */
-    int rc = vres_read_all(snap, &buf, &len) != 0 || vres_write_text(path, (const char *)buf, len) != 0 ? -1 : 0;
+    int rc = vres_copy_file(snap, path);
     vres_error_hold(NULL, 0);
     if (!rc) vres_debug("checkpoint: %s copied to %s", snap, path), clk->last_ckpt = vres_run_wall_now();
     else vres_debug("checkpoint: no copy of %s (%s): written instead", snap, why);
-    free(buf), free(snap), free(path);
+    free(snap), free(path);
     return rc;
 }
 

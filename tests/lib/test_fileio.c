@@ -1,6 +1,6 @@
 /* test_fileio.c - unit tests of lib/fileio.c: atomic output (nothing under the final name
  * until commit, nothing left after abort), refusal of missing or unwritable directories,
- * whole-file reading and mkdir -p. */
+ * whole-file reading, copying and mkdir -p. */
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -156,6 +156,42 @@ START_TEST(read_missing_file_fails)
 }
 END_TEST
 
+/* vres_copy_file copies a file of several of its one-megabyte chunks and a part byte for byte, and
+ * a missing source or an unwritable destination fails with nothing left under the destination's
+ * name. */
+START_TEST(copy_file_chunks)
+{
+    char src[128], dst[128];
+    snprintf(src, sizeof src, "%s/src.bin", dir);
+    snprintf(dst, sizeof dst, "%s/dst.bin", dir);
+    const size_t n = 3 * (1u << 20) + 12345; /* three whole chunks and a part */
+    unsigned char *data = malloc(n);
+    ck_assert_ptr_nonnull(data);
+    for (size_t i = 0; i < n; i++) data[i] = (unsigned char)(i * 2654435761u >> 13);
+    FILE *f = fopen(src, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(data, 1, n, f), n);
+    fclose(f);
+    ck_assert_int_eq(vres_copy_file(src, dst), 0);
+    unsigned char *buf;
+    size_t len;
+    ck_assert_int_eq(vres_read_all(dst, &buf, &len), 0);
+    ck_assert_uint_eq(len, n);
+    ck_assert_int_eq(memcmp(buf, data, n), 0);
+    free(buf);
+    free(data);
+    char missing[128], nodir[160];
+    snprintf(missing, sizeof missing, "%s/none", dir);
+    snprintf(nodir, sizeof nodir, "%s/nodir/dst.bin", dir);
+    ck_assert_int_eq(vres_copy_file(missing, nodir), -1);
+    ck_assert_int_eq(vres_copy_file(src, nodir), -1);
+    ck_assert(!exists(nodir));
+    snprintf(dst, sizeof dst, "%s/dst2.bin", dir);
+    ck_assert_int_eq(vres_copy_file(missing, dst), -1);
+    ck_assert(!exists(dst));
+}
+END_TEST
+
 START_TEST(mkdirs_nested)
 {
     char path[160];
@@ -182,6 +218,7 @@ int main(void)
     tcase_add_test(tc, refuses_bad_directories);
     tcase_add_test(tc, device_written_in_place);
     tcase_add_test(tc, read_missing_file_fails);
+    tcase_add_test(tc, copy_file_chunks);
     tcase_add_test(tc, mkdirs_nested);
     suite_add_tcase(s, tc);
     return vres_check_run(s);
