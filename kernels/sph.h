@@ -1091,6 +1091,65 @@ typedef struct vres_sph_sums {
     double s[6];                  /* laminar+SPS: two_strain (1/s) */
 } vres_sph_sums;
 
+#ifdef VRES_KEEP8
+/* Group j (terms j .. j + 3) of the sums of vres_sph_sum_terms added into the running parts:
+ * continuity *arp and maximum rate *mx always, acceleration *ax, *ay (with D3), *az with acc,
+ * density diffusion *df with diff; each as vres_sph_sum4 and vres_sph_max4 add a group. */
+static inline VRES_FORCE_INLINE void vres_sph_group_add(const float *arp_t, const float *rate_t, const float *ax_t,
+                                                        const float *ay_t, const float *az_t, const float *df_t,
+                                                        int j, vres_v4d *arp, vres_v4d *ax, vres_v4d *ay,
+                                                        vres_v4d *az, vres_v4d *df, vres_v4f *mx, const int acc,
+                                                        const int D3, const int diff)
+{
+    vres_v4f f, r;
+    memcpy(&f, arp_t + j, sizeof f);
+    *arp += __builtin_convertvector(f, vres_v4d);
+    memcpy(&r, rate_t + j, sizeof r);
+    const vres_v4i gt = r > *mx; /* lanes where the rate is larger (false for NaN) */
+    *mx = (vres_v4f)(((vres_v4i)r & gt) | ((vres_v4i)*mx & ~gt));
+    if (!acc) return;
+    memcpy(&f, ax_t + j, sizeof f);
+    *ax += __builtin_convertvector(f, vres_v4d);
+    if (D3) {
+        memcpy(&f, ay_t + j, sizeof f);
+        *ay += __builtin_convertvector(f, vres_v4d);
+    }
+    memcpy(&f, az_t + j, sizeof f);
+    *az += __builtin_convertvector(f, vres_v4d);
+    if (diff) {
+        memcpy(&f, df_t + j, sizeof f);
+        *df += __builtin_convertvector(f, vres_v4d);
+    }
+}
+
+/* vres_sph_sum_terms' single-precision sums over T's first ng terms (ng a multiple of 4) in one
+ * loop over the groups of four: each sum gets the same additions in the same order as
+ * vres_sph_sum4 gives it, but the sums' chains of additions, independent of each other, overlap
+ * (a loop per sum waits on one chain at a time). The maximum rate runs in two chains, the even
+ * groups' and the odd ones', joined at the end: the same bits as vres_sph_max4, since no value of
+ * a maximum is NaN or -0 (they start at +0 and a term enters only when larger), so a maximum is
+ * that of its terms in any order. acc, D3 and diff as in vres_sph_group_add. */
+static inline VRES_FORCE_INLINE void vres_sph_sum_groups(vres_sph_sums *S, const vres_sph_terms *T, int ng,
+                                                         const int acc, const int D3, const int diff)
+{
+    vres_v4d arp = S->arp, ax = S->ax, ay = S->ay, az = S->az, df = S->diff;
+    vres_v4f m0 = S->vmax, m1 = S->vmax;
+    int j = 0;
+    for (; j + 8 <= ng; j += 8) {
+        vres_sph_group_add(T->arp, T->rate, T->ax, T->ay, T->az, T->diff, j, &arp, &ax, &ay, &az, &df, &m0, acc, D3,
+                           diff);
+        vres_sph_group_add(T->arp, T->rate, T->ax, T->ay, T->az, T->diff, j + 4, &arp, &ax, &ay, &az, &df, &m1, acc,
+                           D3, diff);
+    }
+    if (j < ng)
+        vres_sph_group_add(T->arp, T->rate, T->ax, T->ay, T->az, T->diff, j, &arp, &ax, &ay, &az, &df, &m0, acc, D3,
+                           diff);
+    const vres_v4i gt = m1 > m0;
+    S->vmax = (vres_v4f)(((vres_v4i)m1 & gt) | ((vres_v4i)m0 & ~gt));
+    S->arp = arp, S->ax = ax, S->ay = ay, S->az = az, S->diff = df;
+}
+#endif
+
 /* Step 5 of vres_sph_interact_v for one pass: the terms T of its np pairs, after the r0 that the
  * pass before left (T's single-precision arrays hold r0 + np terms from 0, the double ones np),
  * into the sums S. The single-precision terms are added in whole groups of four, the last pass
@@ -1108,13 +1167,21 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S,
         for (int j = 0; j < np; j++)
             if (buf[j]) T->arp[r0 + j] = -0.0f; /* a floating body's density: no buffer */
     for (int j = nt; j < ng; j++) T->arp[j] = T->ax[j] = T->ay[j] = T->az[j] = T->diff[j] = -0.0f, T->rate[j] = 0.0f;
+#ifdef VRES_KEEP8
+    if (!(fluid_a || float_a)) vres_sph_sum_groups(S, T, ng, 0, D3, 0);
+    else if (ddt != VRES_DDT_NONE && !float_a) vres_sph_sum_groups(S, T, ng, 1, D3, 1);
+    else vres_sph_sum_groups(S, T, ng, 1, D3, 0);
+#else
     vres_sph_sum4(&S->arp, T->arp, ng);
     vres_sph_max4(&S->vmax, T->rate, ng);
+#endif
     if (fluid_a || float_a) { /* a wall particle a sums only its density rate, a floating one its acceleration too */
+#ifndef VRES_KEEP8
         vres_sph_sum4(&S->ax, T->ax, ng);
         if (D3) vres_sph_sum4(&S->ay, T->ay, ng);
         vres_sph_sum4(&S->az, T->az, ng);
         if (ddt != VRES_DDT_NONE && !float_a) vres_sph_sum4(&S->diff, T->diff, ng);
+#endif
         if (shift)
             for (int j = 0; j < np; j++) {
                 S->gcx += T->gx[j];
