@@ -291,16 +291,29 @@ VRES_HD static inline VRES_FORCE_INLINE vres_sph_fpart4 vres_sph_fzero4(void)
     return z;
 }
 
+#ifdef VRES_KEEP8
+/* s part k += t[k], k = 0..3, each term rounded up to double: one group of a sum's four parts. */
+static inline VRES_FORCE_INLINE void vres_sph_add4(vres_sph_part4 *s, const float *t)
+{
+    vres_v4f f;
+    memcpy(&f, t, sizeof f);
+    *s += __builtin_convertvector(f, vres_v4d);
+}
+
+/* mx part k = f[k] where f[k] > mx part k (never for a NaN f[k]), k = 0..3. */
+static inline VRES_FORCE_INLINE void vres_sph_max_in4(vres_sph_fpart4 *mx, vres_v4f f)
+{
+    const vres_v4i gt = f > *mx;
+    *mx = (vres_v4f)(((vres_v4i)f & gt) | ((vres_v4i)*mx & ~gt));
+}
+#endif
+
 /* s part k += t[j + k] for j = 0, 4, ... < n (n a multiple of 4), each term rounded up to
  * double: the four parts of a sum, their terms from the pairs in order. */
 VRES_HD static inline VRES_FORCE_INLINE void vres_sph_sum4(vres_sph_part4 *s, const float *t, int n)
 {
 #ifdef VRES_KEEP8 /* one vector add of four doubles per group (GCC's own vectorisation took two of two) */
-    for (int j = 0; j < n; j += 4) {
-        vres_v4f f;
-        memcpy(&f, t + j, sizeof f);
-        *s += __builtin_convertvector(f, vres_v4d);
-    }
+    for (int j = 0; j < n; j += 4) vres_sph_add4(s, t + j);
 #else
     for (int j = 0; j < n; j += 4)
         for (int k = 0; k < 4; k++) s->v[k] += (double)t[j + k];
@@ -315,8 +328,7 @@ VRES_HD static inline VRES_FORCE_INLINE void vres_sph_max4(vres_sph_fpart4 *mx, 
 #ifdef VRES_KEEP8
         vres_v4f f;
         memcpy(&f, t + j, sizeof f);
-        const vres_v4i gt = f > *mx; /* lanes where the term is larger (false for NaN) */
-        *mx = (vres_v4f)(((vres_v4i)f & gt) | ((vres_v4i)*mx & ~gt));
+        vres_sph_max_in4(mx, f);
 #else
         for (int k = 0; k < 4; k++) mx->v[k] = t[j + k] > mx->v[k] ? t[j + k] : mx->v[k];
 #endif
@@ -1092,34 +1104,22 @@ typedef struct vres_sph_sums {
 } vres_sph_sums;
 
 #ifdef VRES_KEEP8
-/* Group j (terms j .. j + 3) of the sums of vres_sph_sum_terms added into the running parts:
- * continuity *arp and maximum rate *mx always, acceleration *ax, *ay (with D3), *az with acc,
- * density diffusion *df with diff; each as vres_sph_sum4 and vres_sph_max4 add a group. */
-static inline VRES_FORCE_INLINE void vres_sph_group_add(const float *arp_t, const float *rate_t, const float *ax_t,
-                                                        const float *ay_t, const float *az_t, const float *df_t,
-                                                        int j, vres_v4d *arp, vres_v4d *ax, vres_v4d *ay,
-                                                        vres_v4d *az, vres_v4d *df, vres_v4f *mx, const int acc,
-                                                        const int D3, const int diff)
+/* Group j (terms j .. j + 3) of T's single-precision terms added into the running parts of
+ * vres_sph_sum_terms' sums: continuity *arp and maximum rate *mx always, acceleration *ax, *ay
+ * (with D3), *az with acc, density diffusion *df with diff (vres_sph_add4, vres_sph_max_in4). */
+static inline VRES_FORCE_INLINE void vres_sph_group_add(const vres_sph_terms *T, int j, vres_v4d *arp, vres_v4d *ax,
+                                                        vres_v4d *ay, vres_v4d *az, vres_v4d *df, vres_v4f *mx,
+                                                        const int acc, const int D3, const int diff)
 {
-    vres_v4f f, r;
-    memcpy(&f, arp_t + j, sizeof f);
-    *arp += __builtin_convertvector(f, vres_v4d);
-    memcpy(&r, rate_t + j, sizeof r);
-    const vres_v4i gt = r > *mx; /* lanes where the rate is larger (false for NaN) */
-    *mx = (vres_v4f)(((vres_v4i)r & gt) | ((vres_v4i)*mx & ~gt));
+    vres_v4f r;
+    vres_sph_add4(arp, T->arp + j);
+    memcpy(&r, T->rate + j, sizeof r);
+    vres_sph_max_in4(mx, r);
     if (!acc) return;
-    memcpy(&f, ax_t + j, sizeof f);
-    *ax += __builtin_convertvector(f, vres_v4d);
-    if (D3) {
-        memcpy(&f, ay_t + j, sizeof f);
-        *ay += __builtin_convertvector(f, vres_v4d);
-    }
-    memcpy(&f, az_t + j, sizeof f);
-    *az += __builtin_convertvector(f, vres_v4d);
-    if (diff) {
-        memcpy(&f, df_t + j, sizeof f);
-        *df += __builtin_convertvector(f, vres_v4d);
-    }
+    vres_sph_add4(ax, T->ax + j);
+    if (D3) vres_sph_add4(ay, T->ay + j);
+    vres_sph_add4(az, T->az + j);
+    if (diff) vres_sph_add4(df, T->diff + j);
 }
 
 /* vres_sph_sum_terms' single-precision sums over T's first ng terms (ng a multiple of 4) in one
@@ -1136,16 +1136,12 @@ static inline VRES_FORCE_INLINE void vres_sph_sum_groups(vres_sph_sums *S, const
     vres_v4f m0 = S->vmax, m1 = S->vmax;
     int j = 0;
     for (; j + 8 <= ng; j += 8) {
-        vres_sph_group_add(T->arp, T->rate, T->ax, T->ay, T->az, T->diff, j, &arp, &ax, &ay, &az, &df, &m0, acc, D3,
-                           diff);
-        vres_sph_group_add(T->arp, T->rate, T->ax, T->ay, T->az, T->diff, j + 4, &arp, &ax, &ay, &az, &df, &m1, acc,
-                           D3, diff);
+        vres_sph_group_add(T, j, &arp, &ax, &ay, &az, &df, &m0, acc, D3, diff);
+        vres_sph_group_add(T, j + 4, &arp, &ax, &ay, &az, &df, &m1, acc, D3, diff);
     }
-    if (j < ng)
-        vres_sph_group_add(T->arp, T->rate, T->ax, T->ay, T->az, T->diff, j, &arp, &ax, &ay, &az, &df, &m0, acc, D3,
-                           diff);
-    const vres_v4i gt = m1 > m0;
-    S->vmax = (vres_v4f)(((vres_v4i)m1 & gt) | ((vres_v4i)m0 & ~gt));
+    if (j < ng) vres_sph_group_add(T, j, &arp, &ax, &ay, &az, &df, &m0, acc, D3, diff);
+    vres_sph_max_in4(&m0, m1);
+    S->vmax = m0;
     S->arp = arp, S->ax = ax, S->ay = ay, S->az = az, S->diff = df;
 }
 #endif
@@ -1167,6 +1163,7 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S,
         for (int j = 0; j < np; j++)
             if (buf[j]) T->arp[r0 + j] = -0.0f; /* a floating body's density: no buffer */
     for (int j = nt; j < ng; j++) T->arp[j] = T->ax[j] = T->ay[j] = T->az[j] = T->diff[j] = -0.0f, T->rate[j] = 0.0f;
+    /* a wall particle a sums only its density rate, a floating one its acceleration too */
 #ifdef VRES_KEEP8
     if (!(fluid_a || float_a)) vres_sph_sum_groups(S, T, ng, 0, D3, 0);
     else if (ddt != VRES_DDT_NONE && !float_a) vres_sph_sum_groups(S, T, ng, 1, D3, 1);
@@ -1174,14 +1171,14 @@ VRES_HD static inline VRES_FORCE_INLINE int vres_sph_sum_terms(vres_sph_sums *S,
 #else
     vres_sph_sum4(&S->arp, T->arp, ng);
     vres_sph_max4(&S->vmax, T->rate, ng);
-#endif
-    if (fluid_a || float_a) { /* a wall particle a sums only its density rate, a floating one its acceleration too */
-#ifndef VRES_KEEP8
+    if (fluid_a || float_a) {
         vres_sph_sum4(&S->ax, T->ax, ng);
         if (D3) vres_sph_sum4(&S->ay, T->ay, ng);
         vres_sph_sum4(&S->az, T->az, ng);
         if (ddt != VRES_DDT_NONE && !float_a) vres_sph_sum4(&S->diff, T->diff, ng);
+    }
 #endif
+    if (fluid_a || float_a) {
         if (shift)
             for (int j = 0; j < np; j++) {
                 S->gcx += T->gx[j];
