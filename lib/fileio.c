@@ -201,16 +201,17 @@ int vres_copy_file(const char *src, const char *dst)
     FILE *out = fopen(of.tmp, "wb");
     const size_t chunk = 1 << 20;
     unsigned char *buf = vres_xmalloc(chunk);
-    int ok = out != NULL, bad_in = 0;
+    int ok = out != NULL, bad_in = 0, err = out ? 0 : errno; /* err: the first failure's errno */
     size_t got;
-    while (ok && (got = fread(buf, 1, chunk, in)) > 0) ok = fwrite(buf, 1, got, out) == got;
-    if (ok && ferror(in)) ok = 0, bad_in = 1;
-    if (out && fclose(out) != 0) ok = 0;
+    while (ok && (got = fread(buf, 1, chunk, in)) > 0)
+        if (fwrite(buf, 1, got, out) != got) ok = 0, err = errno;
+    if (ok && ferror(in)) ok = 0, bad_in = 1, err = errno;
+    if (out && fclose(out) != 0 && ok) ok = 0, err = errno;
     fclose(in);
     free(buf);
     if (!ok) {
-        if (bad_in) vres_error("%s: read error", src);
-        else vres_error("%s: cannot write", dst);
+        if (bad_in) vres_error("%s: read error: %s", src, strerror(err));
+        else vres_error("%s: cannot write: %s", dst, strerror(err));
         vres_out_abort(&of);
         return -1;
     }
