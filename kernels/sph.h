@@ -173,6 +173,13 @@ VRES_HD static inline float vres_sph_pair_laminar(float nu, float mb, float rhoa
     return mb * 4.0f * nu * xf * inv_r2eta / (rhoa + rhob);
 }
 
+/* a . b in single precision, the x, y, z products added in that order (y left out in 2D: D3 0). */
+VRES_HD static inline VRES_FORCE_INLINE float vres_sph_fdot(float ax, float ay, float az, float bx, float by, float bz,
+                                                           const int D3)
+{
+    return D3 ? ax * bx + ay * by + az * bz : ax * bx + az * bz;
+}
+
 /* One component of b's acceleration of a (m/s^2) from the pressure coefficient prs and the
  * viscous one vc (vres_sph_pair_visc or, viscosity laminar, vres_sph_pair_laminar), fr that
  * component of grad_a W_ab (m^-(dim+1)), dv that of v_ab (m/s): -(prs + vc) fr (artificial), or
@@ -1363,6 +1370,18 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
            would not be vectorised. Each dot product adds x, y, z in that order, as the scalar form. */
         float *const tarp = T.arp + r0, *const trate = T.rate + r0, *const tax = T.ax + r0, *const tay = T.ay + r0;
         float *const taz = T.az + r0, *const tdiff = T.diff + r0; /* this pass's terms, after those carried */
+        if (!fluid_a && !float_a) { /* a wall particle: its density rate and its largest rate only (the
+                                       sums take nothing else of its pairs), by the same operations */
+#pragma omp simd
+            for (int j = 0; j < np; j++) {
+                const float dx = Q.dx[j], dz = Q.dz[j], r2 = Q.r2[j];
+                const float dy = D3 ? Q.dy[j] : 0.0f;
+                const float F = vres_sph_kernel_ff(C, kernel, sqrtf(r2));
+                const float dvx = vxa - Q.vx[j], dvz = vza - Q.vz[j], dvy = D3 ? vya - Q.vy[j] : 0.0f;
+                tarp[j] = Q.mb[j] * vres_sph_fdot(dvx, dvy, dvz, F * dx, F * dy, F * dz, D3);
+                trate[j] = vres_sph_fdot(dx, dy, dz, dvx, dvy, dvz, D3) * (1.0f / (r2 + eta2));
+            }
+        } else
 #pragma omp simd
         for (int j = 0; j < np; j++) {
             const float mb = Q.mb[j], rhob = Q.rhob[j], vxb = Q.vx[j], vzb = Q.vz[j], pb = Q.pb[j];
@@ -1372,15 +1391,14 @@ VRES_HD VRES_SPH_INLINE static inline void vres_sph_interact_v(size_t a, const v
             const float frx = F * dx, fry = F * dy, frz = F * dz;
             const float dvx = vxa - vxb, dvz = vza - vzb, dvy = D3 ? vya - Q.vy[j] : 0.0f;
             const float inv_r2eta = 1.0f / (r2 + eta2), inv_rhob = 1.0f / rhob;
-            tarp[j] = mb * (D3 ? dvx * frx + dvy * fry + dvz * frz : dvx * frx + dvz * frz);
-            const float dot = D3 ? dx * dvx + dy * dvy + dz * dvz : dx * dvx + dz * dvz, dot_rr2 = dot * inv_r2eta;
+            tarp[j] = mb * vres_sph_fdot(dvx, dvy, dvz, frx, fry, frz, D3);
+            const float dot = vres_sph_fdot(dx, dy, dz, dvx, dvy, dvz, D3), dot_rr2 = dot * inv_r2eta;
             trate[j] = dot_rr2;
             const float prs = vres_sph_pair_prs(C, kernel, mb, pa, pb, inv_rhoa, inv_rhob, r, ra);
             const float vis = walls && (float_a || Q.wall[j] != 0.0f) ? visc_wall : visc_fluid; /* the pair's Visco */
             const float vc = VRES_VISC_IS_LAMINAR(viscosity)
                                  ? vres_sph_pair_laminar(vis, mb, rhoa, rhob,
-                                                         D3 ? dx * frx + dy * fry + dz * frz : dx * frx + dz * frz,
-                                                         inv_r2eta)
+                                                         vres_sph_fdot(dx, dy, dz, frx, fry, frz, D3), inv_r2eta)
                                  : vres_sph_pair_visc(C, vis, mb, rhoa, rhob, dot, dot_rr2);
             tax[j] = vres_sph_pair_acc(viscosity, prs, vc, frx, dvx);
             taz[j] = vres_sph_pair_acc(viscosity, prs, vc, frz, dvz);
