@@ -199,9 +199,9 @@ int vres_copy_file(const char *src, const char *dst)
         return -1;
     }
     FILE *out = fopen(of.tmp, "wb");
+    int ok = out != NULL, bad_in = 0, err = out ? 0 : errno; /* err: the first failure's errno */
     const size_t chunk = 1 << 20;
     unsigned char *buf = vres_xmalloc(chunk);
-    int ok = out != NULL, bad_in = 0, err = out ? 0 : errno; /* err: the first failure's errno */
     size_t got;
     while (ok && (got = fread(buf, 1, chunk, in)) > 0)
         if (fwrite(buf, 1, got, out) != got) ok = 0, err = errno;
